@@ -1,0 +1,22 @@
+# Cross toolchain for the actuator controller board: STM32F405/407, Cortex-M4F with the
+# single-precision FPU (fpv4-sp-d16), hard-float ABI.  Debian's gcc-arm-none-eabi + newlib.
+set(CMAKE_SYSTEM_NAME Generic)
+set(CMAKE_SYSTEM_PROCESSOR arm)
+
+set(CMAKE_C_COMPILER arm-none-eabi-gcc)
+set(CMAKE_ASM_COMPILER arm-none-eabi-gcc)
+set(CMAKE_OBJCOPY arm-none-eabi-objcopy CACHE FILEPATH "objcopy")
+set(CMAKE_SIZE arm-none-eabi-size CACHE FILEPATH "size")
+set(CMAKE_NM arm-none-eabi-nm CACHE FILEPATH "nm")
+
+# No OS to link a test program against: probe the compiler with a static library.
+set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
+
+set(TSE_CPU_FLAGS "-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard")
+set(CMAKE_C_FLAGS_INIT "${TSE_CPU_FLAGS} -ffunction-sections -fdata-sections -fno-common")
+set(CMAKE_ASM_FLAGS_INIT "${TSE_CPU_FLAGS}")
+set(CMAKE_EXE_LINKER_FLAGS_INIT "${TSE_CPU_FLAGS} -Wl,--gc-sections --specs=nano.specs")
+
+set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
+set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
+set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)

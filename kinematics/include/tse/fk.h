@@ -1,0 +1,25 @@
+/* Forward kinematics: the pose whose solution is q (kinematics.md, "Forward kinematics").
+ *
+ * Newton on the six constraints F(p, q) = 0 from a seed pose.  The answer is then checked by the
+ * inverse kinematics, seeded with q: unless it reproduces q, the result is a failure, never a pose. */
+#ifndef TSE_FK_H
+#define TSE_FK_H
+
+#include "tse/geometry.h"
+#include "tse/status.h"
+
+typedef struct {
+    tse_status status; /* TSE_OK, TSE_INVALID, TSE_NOCONVERGE, or the IK check's status */
+    int scissor;       /* failing scissor of the IK check, else 0 */
+    tse_real pose[6];  /* meaningful only when status == TSE_OK */
+    int iterations;
+    tse_real q_error;  /* max |IK(pose) - q| [m] */
+} tse_fk_result;
+
+#define tse_fk TSE_NS(tse_fk)
+
+/* seed_pose: the last pose, or NULL for the geometry's home pose. */
+tse_status tse_fk(const tse_geometry *g, const tse_real q[6], const tse_real seed_pose[6],
+                  tse_fk_result *out);
+
+#endif

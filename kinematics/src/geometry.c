@@ -1,0 +1,72 @@
+#include "tse/geometry.h"
+
+tse_param_id tse_geometry_init(tse_geometry *g, const tse_params *p)
+{
+    tse_param_id bad = tse_params_check(p);
+    if (bad != TSE_PARAM_OK)
+        return bad;
+
+    g->p = *p;
+    g->l0 = p->k1 * p->L;
+    g->r_act = p->k3 * p->L;
+    g->r_top = p->k4 * p->L;
+    g->inv_r_top = TSE_R(1.0) / g->r_top;
+    const tse_real ratio = TSE_R(1.0) / p->k1;
+    g->g = (TSE_R(1.0) - ratio * ratio) / TSE_R(4.0);
+    g->c = tse_cos(TSE_R(2.0) * p->eta);
+    /* w = 2 l0 cos(alpha) falls as alpha rises: the stops become a band on w, no acos needed. */
+    g->w_hi = TSE_R(2.0) * g->l0 * tse_cos(p->alpha_min);
+    g->w_lo = TSE_R(2.0) * g->l0 * tse_cos(p->alpha_max);
+    /* Bounded Newton steps keep a cold start from jumping sheets (kinematics.md, solver notes). */
+    g->step_max = TSE_R(0.1) * p->L;
+
+    /* Exact values at 0, 120 and 240 degrees keep the three scissors bit-for-bit symmetric. */
+    const tse_real half_sqrt3 = TSE_R(0.86602540378443864676);
+    const tse_real cb[3] = {TSE_R(1.0), TSE_R(-0.5), TSE_R(-0.5)};
+    const tse_real sb[3] = {TSE_R(0.0), half_sqrt3, -half_sqrt3};
+    const tse_real ce = tse_cos(p->eta), se = tse_sin(p->eta);
+    for (int i = 0; i < 3; ++i) {
+        tse_scissor_frame *f = &g->sc[i];
+        const tse_real er[2] = {cb[i], sb[i]};
+        const tse_real et[2] = {-sb[i], cb[i]};
+        for (int k = 0; k < 2; ++k) {
+            f->er[k] = er[k];
+            f->o[k] = g->r_act * er[k];
+            f->a[k] = ce * et[k] + se * er[k];
+            f->b[k] = -ce * et[k] + se * er[k];
+        }
+    }
+
+    const tse_real z_home = p->L * tse_sin(TSE_R(0.5) * (p->alpha_min + p->alpha_max));
+    for (int k = 0; k < 6; ++k)
+        g->home_pose[k] = TSE_R(0.0);
+    g->home_pose[TSE_Z] = z_home;
+    g->home_s = tse_vertical_slide(g, z_home);
+    /* A design without a symmetric solution at mid height still needs some seed; the quartic
+     * fallback of the solver does not depend on it. */
+    if (!isfinite(g->home_s))
+        g->home_s = TSE_R(0.5) * g->l0;
+    return TSE_PARAM_OK;
+}
+
+/* On the vertical axis u = v = u0 and s_A = s_B = s solves F1; F2 becomes
+ * A s^2 - 2 u0 s + (rho2 - L^2) = 0 with A = 1 - 2 g (1 + c) >= 1, and det M = 4 (s - u0)(A s - u0). */
+tse_real tse_vertical_slide(const tse_geometry *g, tse_real z)
+{
+    const tse_real d = g->r_top - g->r_act;
+    const tse_real u0 = d * tse_sin(g->p.eta);
+    const tse_real A = TSE_R(1.0) - TSE_R(2.0) * g->g * (TSE_R(1.0) + g->c);
+    const tse_real k = d * d + z * z - g->p.L * g->p.L;
+    const tse_real disc = u0 * u0 - A * k;
+    if (!(disc >= TSE_R(0.0)))
+        return (tse_real)NAN;
+    const tse_real root = tse_sqrt(disc);
+    /* Larger root first: it is the home branch of any practical design. */
+    const tse_real cand[2] = {(u0 + root) / A, (u0 - root) / A};
+    for (int j = 0; j < 2; ++j) {
+        const tse_real s = cand[j];
+        if (s > TSE_R(0.0) && (s - u0) * (A * s - u0) > TSE_R(0.0))
+            return s;
+    }
+    return (tse_real)NAN;
+}

@@ -1,0 +1,64 @@
+/* Helpers shared inside the kinematics library; not part of its contract.  Names go through
+ * TSE_NS like the public ones, since the float and double builds may be linked together. */
+#ifndef TSE_KIN_INTERNAL_H
+#define TSE_KIN_INTERNAL_H
+
+#include "tse/geometry.h"
+
+/* What the constraints of one scissor need to know of its ball joint. */
+typedef struct {
+    tse_real d[3]; /* C - O_i */
+    tse_real u, v; /* d . a_i, d . b_i */
+    tse_real rho2; /* |d|^2 */
+} tse_scissor_local;
+
+#define tse_scissor_localize TSE_NS(tse_scissor_localize)
+#define tse_scissor_eval TSE_NS(tse_scissor_eval)
+#define tse_poly_real_roots TSE_NS(tse_poly_real_roots)
+#define tse_plate_frame TSE_NS(tse_plate_frame)
+#define tse_apex_from_frame TSE_NS(tse_apex_from_frame)
+#define tse_lu_factor6 TSE_NS(tse_lu_factor6)
+#define tse_lu_solve6 TSE_NS(tse_lu_solve6)
+#define tse_sym_eigen6 TSE_NS(tse_sym_eigen6)
+#define tse_weakest_row6 TSE_NS(tse_weakest_row6)
+#define tse_constraint_rows TSE_NS(tse_constraint_rows)
+
+void tse_scissor_localize(const tse_geometry *g, int i, const tse_real C[3], tse_scissor_local *loc);
+
+/* F = (F1, F2) and M = dF/d(s_A, s_B) at the given slides. */
+void tse_scissor_eval(const tse_geometry *g, const tse_scissor_local *loc, tse_real s_a, tse_real s_b,
+                      tse_real F[2], tse_real M[2][2]);
+
+/* All real roots of sum coef[k] x^k (deg 1..4, coef[deg] != 0), ascending; returns how many. */
+int tse_poly_real_roots(const tse_real *coef, int deg, tse_real *roots);
+
+/* The plate's orientation, computed once per pose from one set of sines and cosines: R, and the
+ * world-frame axes about which roll, pitch and yaw turn the plate (R = Rz Ry Rx), so that
+ * dR/dtheta_k v = axis_k x (R v).  Axis rows: roll, pitch, yaw. */
+typedef struct {
+    tse_real R[3][3];
+    tse_real axes[3][3];
+} tse_plate;
+
+void tse_plate_frame(const tse_real pose[6], tse_plate *f);
+void tse_apex_from_frame(const tse_geometry *g, const tse_real pose[6], const tse_plate *f,
+                         tse_real C[3][3]);
+
+/* In-place LU with partial pivoting.  Returns the determinant (0 when a pivot vanishes). */
+tse_real tse_lu_factor6(tse_real A[6][6], int perm[6]);
+void tse_lu_solve6(const tse_real LU[6][6], const int perm[6], const tse_real b[6], tse_real x[6]);
+
+/* Eigenvalues of a symmetric 6x6 matrix (cyclic Jacobi), descending.  A is destroyed. */
+void tse_sym_eigen6(tse_real A[6][6], tse_real eig[6]);
+
+/* Row of a nonsingular matrix closest to the span of the others, after normalising every row:
+ * the one whose column of the inverse is longest.  -1 if A is singular. */
+int tse_weakest_row6(const tse_real A[6][6]);
+
+/* dF/dp (rows F1_i, F2_i) given the frame and ball joints already computed for pose p, its
+ * rotation columns multiplied by rot_scale; and, when M is not NULL, the blocks M_i. */
+void tse_constraint_rows(const tse_geometry *g, const tse_real pose[6], const tse_plate *f,
+                         const tse_real C[3][3], const tse_real q[6], tse_real rot_scale,
+                         tse_real Fp[6][6], tse_real M[3][2][2]);
+
+#endif

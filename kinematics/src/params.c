@@ -1,0 +1,59 @@
+#include "tse/params.h"
+
+void tse_params_default(tse_params *p)
+{
+    const tse_real L = TSE_R(1.727);
+    p->L = L;
+    p->k1 = TSE_R(0.2647);
+    p->eta = TSE_PI / TSE_R(6.0);
+    p->k3 = TSE_R(0.0186);
+    p->k4 = TSE_R(0.11765);
+    /* The prototype's stops: retracted height 0.324 m, extended 1.619 m (paper, section VI). */
+    p->alpha_min = tse_asin(TSE_R(0.324) / L);
+    p->alpha_max = tse_asin(TSE_R(1.619) / L);
+    /* kinematics.md: a stroke wide enough that the alpha stops bound the workspace. */
+    p->s_min = TSE_R(0.0);
+    p->s_max = TSE_R(0.90);
+    p->mu_min = TSE_R(0.05);
+    p->nu_min = TSE_R(1e-3);
+}
+
+/* Written as "accept when inside" so that NaN, which fails every comparison, is rejected too. */
+static int inside(tse_real x, tse_real lo, int lo_closed, tse_real hi, int hi_closed)
+{
+    if (!isfinite(x))
+        return 0;
+    int above = lo_closed ? (x >= lo) : (x > lo);
+    int below = hi_closed ? (x <= hi) : (x < hi);
+    return above && below;
+}
+
+tse_param_id tse_params_check(const tse_params *p)
+{
+    const tse_real right = TSE_PI / TSE_R(2.0);
+    const tse_real big = (tse_real)INFINITY;
+
+    if (!inside(p->L, TSE_R(0.0), 0, big, 0))
+        return TSE_PARAM_L;
+    if (!inside(p->k1, TSE_R(0.0), 0, TSE_R(1.0), 1))
+        return TSE_PARAM_K1;
+    if (!inside(p->eta, -right, 0, right, 0))
+        return TSE_PARAM_ETA;
+    if (!inside(p->k3, TSE_R(0.0), 1, big, 0))
+        return TSE_PARAM_K3;
+    if (!inside(p->k4, TSE_R(0.0), 0, big, 0))
+        return TSE_PARAM_K4;
+    if (!inside(p->alpha_min, TSE_R(0.0), 0, right, 0))
+        return TSE_PARAM_ALPHA_MIN;
+    if (!inside(p->alpha_max, p->alpha_min, 0, right, 0))
+        return TSE_PARAM_ALPHA_MAX;
+    if (!inside(p->s_min, TSE_R(0.0), 1, big, 0))
+        return TSE_PARAM_S_MIN;
+    if (!inside(p->s_max, p->s_min, 0, big, 0))
+        return TSE_PARAM_S_MAX;
+    if (!inside(p->mu_min, TSE_R(0.0), 1, TSE_R(1.0), 0))
+        return TSE_PARAM_MU_MIN;
+    if (!inside(p->nu_min, TSE_R(0.0), 1, TSE_R(1.0), 0))
+        return TSE_PARAM_NU_MIN;
+    return TSE_PARAM_OK;
+}

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs every Debian package the build, the tools and the tests need.  A second run is a
+# no-op: packages already present (dpkg -s) are not asked for again, and apt-get update runs only
+# when something is missing.
+set -euo pipefail
+
+packages=(
+  cmake make gcc libc6-dev          # host build
+  libcmocka-dev                     # unit tests
+  gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi   # the board build
+  python3 python3-mpmath            # the independent high-precision oracle
+  python3-numpy python3-scipy       # the fsolve baseline of the benchmark
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}"
+as_root=()
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null 2>&1 || { echo "setup: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
+  as_root=(sudo)
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${as_root[@]}" apt-get update -qq
+"${as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Sets up the machine, then builds and runs every test: the host build, the sanitizer build, and
+# the board build (whose float kinematics must not pull in software double arithmetic).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/setup.sh
+jobs=$(nproc 2>/dev/null || echo 2)
+
+for preset in host asan; do
+  echo "=== ${preset}: configure, build, test"
+  cmake --preset "$preset" >/dev/null
+  cmake --build --preset "$preset" -j "$jobs"
+  ctest --preset "$preset" -j "$jobs"
+done
+
+echo "=== stm32f4: cross build"
+cmake --preset stm32f4 >/dev/null
+cmake --build --preset stm32f4 -j "$jobs"
