@@ -1,0 +1,135 @@
+/* The controller: the state machine of system.md, the CAN command handling, and the execution of
+ * motion at the control segment rate.  Hardware-free: everything physical goes through fw_hal.
+ *
+ * The platform drives it from three places:
+ * - fw_step_tick from the step interrupt (step_hz),
+ * - fw_control_tick from the control tick (segment_hz): inputs, watchdog, the next segment,
+ * - fw_poll from the main loop: CAN frames in and out, periodic status and telemetry.
+ * On the board the first two are interrupts; in the simulator they are timer-driven calls. */
+#ifndef FW_CONTROLLER_H
+#define FW_CONTROLLER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "fw/move.h"
+#include "fw/params.h"
+#include "fw/proto.h"
+#include "fw/stepgen.h"
+#include "fw/traj.h"
+#include "fw/types.h"
+#include "hal/can.h"
+#include "hal/clock.h"
+#include "hal/inputs.h"
+#include "hal/stepper.h"
+#include "hal/storage.h"
+
+typedef struct {
+    hal_can can;
+    hal_stepper stepper;
+    hal_inputs inputs;
+    hal_clock clock;
+    hal_storage storage;
+} fw_hal;
+
+typedef struct {
+    uint8_t node;        /* 1..15 */
+    uint32_t segment_hz; /* control segments per second (>= 1000 on the board) */
+    uint32_t step_hz;    /* step interrupts per second, a multiple of segment_hz */
+} fw_config;
+
+/* What a command may do in a state: accept, or refuse with a reason.  One row per command
+ * message, one column per state; see controller.c for the table and docs/protocol.md for it
+ * printed. */
+fw_reason fw_command_allowed(proto_msg cmd, fw_state state);
+
+typedef enum { FW_SRC_NONE, FW_SRC_MOVE, FW_SRC_TRAJ, FW_SRC_JOINT } fw_source;
+
+typedef enum { HOME_SEEK, HOME_RELEASE, HOME_TO_POSE } fw_home_phase;
+
+typedef struct {
+    bool active;        /* homing runs, or is being stopped */
+    bool abort;         /* a stop or a fault asked it to come to rest */
+    fw_home_phase phase;
+    tse_real v[6];      /* joint speeds [m/s], signed */
+    tse_real s[6];      /* joint travel since homing began [m] */
+    tse_real offset[6]; /* slide coordinate minus travel, once latched */
+    int32_t start_steps[6];
+    uint8_t hit;        /* axes that found their switch */
+    uint8_t latched;    /* axes whose switch edge is known */
+    tse_real released[6]; /* travel when the release phase began */
+} fw_homing;
+
+/* A joint-space move (after homing, the robot is not yet at a pose the planner can start from). */
+typedef struct {
+    tse_real from[6], to[6];
+    fw_profile prof; /* of u in [0, 1] */
+} fw_joint_move;
+
+typedef struct {
+    fw_hal hal;
+    fw_config cfg;
+    fw_state state;
+    fw_fault fault;         /* latched fault (FW_FAULT_NONE when none) */
+    fw_fault pending_fault; /* fault to latch once the controlled stop ends */
+    bool homed;
+    bool drives_on;
+
+    fw_param_set params;
+    tse_geometry geom;
+    fw_limits lim;
+    stepgen sg;
+
+    tse_real pose[6];       /* pose of the latest segment setpoint */
+    tse_real q[6];          /* its slides [m] */
+    tse_real q_prev[6];     /* the setpoint before (for the current slide speeds) */
+    bool pose_known;
+
+    /* Staged pose */
+    uint8_t stage_seq;
+    uint8_t stage_have;     /* bit 0: A, 1: B, 2: C */
+    int32_t stage_v[6];
+    uint8_t last_seq;       /* last accepted commit */
+    bool any_commit;
+
+    /* Motion */
+    fw_source src;
+    fw_move move;
+    fw_joint_move joint;
+    fw_traj traj;
+    tse_real tau;           /* path time of the running source [s] */
+    bool stopping;
+    tse_real stop_t, stop_T;/* time into the stop ramp, its length */
+    fw_homing home;
+
+    /* Time */
+    uint64_t last_heartbeat_us;
+    uint64_t next_status_us, next_telemetry_us;
+    uint16_t counter;
+    uint32_t segments_run;
+} fw_controller;
+
+/* Loads the parameters from storage (defaults if none or corrupt) and enters DISABLED.
+ * Returns 0, or -1 for a configuration that cannot run. */
+int fw_init(fw_controller *c, const fw_hal *hal, const fw_config *cfg);
+
+void fw_poll(fw_controller *c);
+void fw_control_tick(fw_controller *c);
+
+/* The step interrupt: one tick of the step generator onto the outputs. */
+static inline void fw_step_tick(fw_controller *c)
+{
+    const stepgen_output o = stepgen_tick(&c->sg);
+    if (o.dir_changed)
+        c->hal.stepper.set_dir(c->hal.stepper.ctx, o.forward_mask);
+    if (o.step_mask)
+        c->hal.stepper.pulse(c->hal.stepper.ctx, o.step_mask);
+}
+
+/* Handles one received frame (fw_poll calls it for every frame it reads). */
+void fw_handle_frame(fw_controller *c, const hal_can_frame *f);
+
+/* The emergency stop path, for a platform that wires the input to an interrupt. */
+void fw_estop(fw_controller *c);
+
+#endif

@@ -1,0 +1,29 @@
+/* Shared between the controller's source files; not part of its contract. */
+#ifndef FW_CONTROLLER_INTERNAL_H
+#define FW_CONTROLLER_INTERNAL_H
+
+#include "fw/controller.h"
+
+void fw_send(fw_controller *c, proto_msg msg, const int32_t *values);
+void fw_ack(fw_controller *c, uint8_t function, uint8_t seq, uint32_t detail);
+void fw_reject(fw_controller *c, uint8_t function, uint8_t seq, fw_reason reason, uint8_t field,
+               const fw_plan_result *why);
+
+void fw_set_state(fw_controller *c, fw_state s);
+void fw_drives(fw_controller *c, bool on);
+/* A fault: a controlled stop first when anything moves, then latched. */
+void fw_fault_raise(fw_controller *c, fw_fault f);
+/* A controlled stop of whatever moves (homing included). */
+void fw_stop_motion(fw_controller *c);
+int fw_apply_params(fw_controller *c, const fw_param_set *s);
+
+/* Starts motion from a validated source; the caller has filled c->move or c->traj. */
+void fw_start_source(fw_controller *c, fw_source src);
+
+void fw_homing_start(fw_controller *c);
+void fw_homing_tick(fw_controller *c);
+
+/* Steps of a slide position [m]. */
+int32_t fw_to_steps(const fw_controller *c, tse_real s);
+
+#endif

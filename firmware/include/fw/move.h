@@ -1,0 +1,58 @@
+/* A point-to-point move of the plate: straight in position, orientation by slerp, under one
+ * jerk-limited profile of the path parameter u in [0, 1].
+ *
+ * Planning validates the whole path before the first step, at the control segment rate, with
+ * the inverse kinematics warm-started from segment to segment exactly as execution will run it:
+ * every segment reachable with both singularity margins; slide speeds within their limit (and
+ * the step rate); slide accelerations within theirs.  A path that leaves the workspace is
+ * rejected with its first failing point; one that is only too fast is stretched in time. */
+#ifndef FW_MOVE_H
+#define FW_MOVE_H
+
+#include <stdint.h>
+
+#include "fw/profile.h"
+#include "fw/types.h"
+#include "tse/ik.h"
+
+typedef struct {
+    tse_real slide_vmax, slide_amax;             /* m/s, m/s^2 (step rate already folded in) */
+    tse_real plate_vmax, plate_amax, plate_jmax; /* m/s, m/s^2, m/s^3 */
+    tse_real plate_wmax, plate_dwmax;            /* rad/s, rad/s^2 */
+    tse_real segment_hz;                         /* control segments per second */
+} fw_limits;
+
+typedef enum { FW_MOVE_DURATION = 0, FW_MOVE_SPEED = 1 } fw_move_kind;
+
+typedef struct {
+    tse_real from[6], to[6];
+    tse_real dp[3];     /* displacement of the plate centre */
+    tse_real q0[4], q1[4];
+    tse_real length;    /* |dp| [m] */
+    tse_real angle;     /* rotation [rad] */
+    fw_profile prof;    /* of u, D = 1 */
+    uint32_t segments;  /* control segments; the last one ends exactly at prof.T */
+    tse_real stretch;   /* time factor the slide limits imposed (1: none) */
+} fw_move;
+
+typedef struct {
+    fw_reason reason;  /* NONE, KINEMATICS, RANGE (a bad request) */
+    tse_status status; /* kinematic status of the first failing point */
+    int scissor;
+    uint32_t segment;  /* first failing segment */
+    tse_real where;    /* its u, 0..1 */
+} fw_plan_result;
+
+/* Plans from pose `from` (whose slides are q_from) to `to`.  kind/value: the duration [s], or the
+ * plate speed [m/s] (rotation-only moves then use the angular limit).  Returns 0 on success. */
+int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const tse_real from[6],
+                 const tse_real to[6], fw_move_kind kind, tse_real value, const tse_real q_from[6],
+                 fw_plan_result *res);
+
+/* Pose at time t (clamped to the move). */
+void fw_move_pose(const fw_move *mv, tse_real t, tse_real pose[6]);
+
+/* Time of control segment k's end: k / rate, the last one exactly at the end. */
+tse_real fw_move_segment_time(const fw_move *mv, const fw_limits *lim, uint32_t k);
+
+#endif

@@ -1,0 +1,75 @@
+/* The controller's parameters: one table (id, name, integer unit, range, default), the raw set the
+ * CAN protocol reads and writes, and its conversion into what kinematics and planning use.
+ *
+ * A set is only ever replaced whole: a change is applied to a copy, checked (each value's range,
+ * then the kinematic validity of the whole set), and only then adopted. */
+#ifndef FW_PARAMS_H
+#define FW_PARAMS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "tse/geometry.h"
+
+typedef enum {
+    FP_L = 0,         /* total scissor length [um] */
+    FP_K1,            /* l0 / L [ppm] */
+    FP_ETA,           /* slide angle [urad] */
+    FP_K3,            /* r_act / L [ppm] */
+    FP_K4,            /* r_top / L [ppm] */
+    FP_ALPHA_MIN,     /* [urad] */
+    FP_ALPHA_MAX,     /* [urad] */
+    FP_S_MIN,         /* [um] */
+    FP_S_MAX,         /* [um] */
+    FP_MU_MIN,        /* [ppm] */
+    FP_NU_MIN,        /* [ppm] */
+    FP_STEPS_PER_M,   /* [steps/m] */
+    FP_SLIDE_VMAX,    /* [um/s] */
+    FP_SLIDE_AMAX,    /* [um/s^2] */
+    FP_PLATE_VMAX,    /* [um/s] */
+    FP_PLATE_AMAX,    /* [um/s^2] */
+    FP_PLATE_JMAX,    /* [um/s^3] */
+    FP_PLATE_WMAX,    /* [urad/s] */
+    FP_PLATE_DWMAX,   /* [urad/s^2] */
+    FP_STEP_RATE_MAX, /* [steps/s] per axis */
+    FP_WATCHDOG_MS,   /* host heartbeat timeout [ms], 0 = off */
+    FP_STATUS_MS,     /* STATUS period [ms] */
+    FP_TELEMETRY_MS,  /* SLIDES/FK period [ms], 0 = off */
+    FP_HOMING_SPEED,  /* [um/s] */
+    FP_HOMING_BACKOFF,/* [um] */
+    FP_COUNT
+} fw_param_id;
+
+typedef struct {
+    const char *name;
+    const char *unit; /* of the integer on the wire */
+    int32_t min, max, def;
+    const char *doc;
+} fw_param_def;
+
+extern const fw_param_def fw_param_table[FP_COUNT];
+
+typedef struct {
+    int32_t v[FP_COUNT];
+} fw_param_set;
+
+void fw_params_default(fw_param_set *s);
+
+/* Kinematic parameters of a set (SI units). */
+void fw_params_kinematics(const fw_param_set *s, tse_params *out);
+
+/* Checks every range, then the geometry.  Returns -1 when all is well, otherwise the id of the
+ * first parameter at fault. */
+int fw_params_check(const fw_param_set *s);
+
+/* Applies one change to *s only if the resulting set passes fw_params_check.
+ * Returns 0, FW_REASON_PARAM_UNKNOWN, FW_REASON_PARAM_RANGE or FW_REASON_PARAM_SET. */
+int fw_params_set_one(fw_param_set *s, uint16_t id, int32_t value);
+
+/* Storage record: a version tag, the set, and a CRC-32.  serialize returns the length written
+ * (or 0 if cap is too small); deserialize returns 0 for a good record, -1 otherwise (and leaves
+ * *s untouched). */
+size_t fw_params_serialize(const fw_param_set *s, uint8_t *buf, size_t cap);
+int fw_params_deserialize(fw_param_set *s, const uint8_t *buf, size_t len);
+
+#endif

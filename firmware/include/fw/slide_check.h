@@ -1,0 +1,36 @@
+/* Measures how close a sequence of slide setpoints comes to the slide speed and acceleration
+ * limits.  Fed one setpoint per control segment, as execution will produce them; the slides are
+ * taken to be at rest before the first setpoint, and fw_slide_check_finish adds the stop after
+ * the last.
+ *
+ * Accelerations are speed differences over ACC_STRIDE segments: a shorter stride would measure
+ * the rounding of the inverse kinematics (1e-7 m in float over (1 ms)^2 is 0.1 m/s^2). */
+#ifndef FW_SLIDE_CHECK_H
+#define FW_SLIDE_CHECK_H
+
+#include <stdint.h>
+
+#include "tse/real.h"
+
+#define FW_ACC_STRIDE 10u
+
+typedef struct {
+    tse_real vmax, amax;  /* limits, m/s and m/s^2 */
+    tse_real segment_hz;
+    tse_real q[6];        /* latest setpoint */
+    tse_real vel[FW_ACC_STRIDE][6];
+    uint32_t n;           /* setpoints fed */
+    tse_real v_ratio;     /* worst |v| / vmax so far */
+    tse_real a_ratio;     /* worst |a| / amax so far */
+} fw_slide_check;
+
+void fw_slide_check_start(fw_slide_check *c, tse_real vmax, tse_real amax, tse_real segment_hz,
+                          const tse_real q_start[6]);
+
+/* The next setpoint, dt seconds after the previous one. */
+void fw_slide_check_feed(fw_slide_check *c, const tse_real q[6], tse_real dt);
+
+/* The slides come to rest after the last setpoint. */
+void fw_slide_check_finish(fw_slide_check *c);
+
+#endif

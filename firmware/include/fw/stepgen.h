@@ -1,0 +1,94 @@
+/* Step generator: interpolates each of the six slides between control-segment setpoints at the
+ * step interrupt rate, in integer arithmetic (Bresenham), and nothing else.
+ *
+ * Promises:
+ * - Exactness: when a segment ends, every axis has emitted exactly target - start steps, as long
+ *   as the segment asks for no more than its capacity (see stepgen_capacity).  A segment that
+ *   asks for more is counted as an overrun; it emits at the maximum rate, and what is left over is
+ *   folded into the next segment, so the emitted count still converges to the setpoint.
+ * - Direction set-up: after an axis changes direction it emits no step for dir_setup_ticks.
+ * - Pulse spacing: two steps of one axis are at least min_step_interval ticks apart, which bounds
+ *   the step rate per axis at isr_hz / min_step_interval and leaves room for the pulse width.
+ * - Segments are double-buffered: the control loop queues the next setpoint while the current one
+ *   runs, and the interrupt switches without a gap.  One producer (control loop) and one consumer
+ *   (step interrupt) may run concurrently.
+ *
+ * No floating point, no heap; every operation is O(axes). */
+#ifndef FW_STEPGEN_H
+#define FW_STEPGEN_H
+
+#include <stdatomic.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#define STEPGEN_AXES 6
+#define STEPGEN_QUEUE 4 /* setpoints that may wait behind the running segment (power of two) */
+
+typedef struct {
+    uint32_t ticks_per_segment; /* step interrupts per control segment, e.g. 200 kHz / 1 kHz */
+    uint32_t dir_setup_ticks;   /* quiet ticks after a direction change (>= 1) */
+    uint32_t min_step_interval; /* ticks between two steps of one axis (>= 1) */
+} stepgen_config;
+
+typedef struct {
+    int32_t position;  /* steps emitted, signed, since the last stepgen_reset */
+    int32_t start;     /* position when the running segment began */
+    uint32_t delta;    /* |steps| the running segment asks of this axis */
+    uint32_t done;     /* steps emitted in the running segment */
+    uint32_t acc;      /* Bresenham accumulator */
+    uint32_t span;     /* ticks over which the steps are spread */
+    uint32_t first;    /* first tick (1-based) at which this axis may step */
+    bool forward;
+} stepgen_axis;
+
+typedef struct {
+    stepgen_config cfg;
+    stepgen_axis ax[STEPGEN_AXES];
+    uint32_t tick;     /* ticks elapsed in the running segment */
+    bool running;
+    uint8_t forward_mask;
+    /* Single-producer single-consumer ring of queued setpoints. */
+    int32_t queue[STEPGEN_QUEUE][STEPGEN_AXES];
+    atomic_uint head; /* written by the producer */
+    atomic_uint tail; /* written by the consumer */
+    uint32_t overruns;  /* segments that asked more than their capacity */
+    uint32_t underruns; /* segment ends with nothing queued while not at rest */
+} stepgen;
+
+typedef struct {
+    uint8_t step_mask;    /* axes to pulse on this tick */
+    uint8_t forward_mask; /* direction of every axis, valid on every tick */
+    bool dir_changed;     /* forward_mask differs from the previous tick's */
+} stepgen_output;
+
+/* Returns 0, or -1 for a configuration that cannot work (zero ticks, intervals, or a set-up time
+ * that leaves no room for a step in a segment). */
+int stepgen_init(stepgen *sg, const stepgen_config *cfg, const int32_t position[STEPGEN_AXES]);
+
+/* Most steps one axis can emit in a segment; with a direction change the set-up time is taken
+ * off.  The planner keeps every segment within this. */
+uint32_t stepgen_capacity(const stepgen_config *cfg, bool direction_change);
+
+/* Producer side: queue the setpoint (absolute, in steps) that the next segment ends at.
+ * Returns 0, or -1 when the queue is full (nothing is queued). */
+int stepgen_push(stepgen *sg, const int32_t target[STEPGEN_AXES]);
+
+/* Setpoints queued and not yet started. */
+unsigned stepgen_queued(const stepgen *sg);
+
+/* Consumer side, once per step interrupt. */
+stepgen_output stepgen_tick(stepgen *sg);
+
+/* True when no segment runs and none is queued. */
+bool stepgen_idle(const stepgen *sg);
+
+/* Emergency stop: abandons the running segment and every queued one at once.  The positions
+ * keep the steps actually emitted.  Call with the step interrupt masked (or from it). */
+void stepgen_abort(stepgen *sg);
+
+/* Position bookkeeping (homing sets the zero).  Only while idle; returns -1 otherwise. */
+int stepgen_set_position(stepgen *sg, const int32_t position[STEPGEN_AXES]);
+
+void stepgen_positions(const stepgen *sg, int32_t out[STEPGEN_AXES]);
+
+#endif

@@ -1,0 +1,52 @@
+/* Enumerations shared by the controller and the wire.  Their values travel in CAN frames:
+ * append, never renumber. */
+#ifndef FW_TYPES_H
+#define FW_TYPES_H
+
+typedef enum {
+    FW_STATE_BOOT = 0,
+    FW_STATE_DISABLED = 1,
+    FW_STATE_HOMING = 2,
+    FW_STATE_IDLE = 3,
+    FW_STATE_MOVING = 4,
+    FW_STATE_STOPPING = 5,
+    FW_STATE_FAULT = 6,
+    FW_STATE_ESTOP = 7,
+    FW_STATE_COUNT
+} fw_state;
+
+typedef enum {
+    FW_FAULT_NONE = 0,
+    FW_FAULT_WATCHDOG = 1,     /* host heartbeat silent past the timeout */
+    FW_FAULT_LIMIT = 2,        /* a limit switch outside homing */
+    FW_FAULT_BUS_OFF = 3,      /* the CAN controller went bus-off */
+    FW_FAULT_PLANNER = 4,      /* the inverse kinematics failed on a segment in motion */
+    FW_FAULT_STEP_OVERRUN = 5, /* a segment asked the step generator for more than it can */
+    FW_FAULT_HOMING = 6,       /* a switch not found within the stroke, or not released */
+    FW_FAULT_ESTOP = 7,        /* the e-stop input or command (latched until cleared) */
+    FW_FAULT_UNDERRUN = 8,     /* the trajectory queue ran dry while moving */
+    FW_FAULT_PLANT = 9,        /* the simulator's plant saw a physical invariant broken */
+    FW_FAULT_COUNT
+} fw_fault;
+
+/* Why a command was refused (REJECT frame). */
+typedef enum {
+    FW_REASON_NONE = 0,
+    FW_REASON_BAD_LENGTH = 1,    /* frame length differs from the table's */
+    FW_REASON_UNKNOWN = 2,       /* no such message for a controller */
+    FW_REASON_RANGE = 3,         /* a field outside its range (field index in the reject) */
+    FW_REASON_STATE = 4,         /* not accepted in the current state */
+    FW_REASON_NOT_HOMED = 5,     /* motion before homing */
+    FW_REASON_INCOMPLETE = 6,    /* commit without all three pose parts of its sequence */
+    FW_REASON_STALE = 7,         /* sequence number not newer than the last accepted */
+    FW_REASON_KINEMATICS = 8,    /* pose or path outside the workspace (scissor, status) */
+    FW_REASON_QUEUE_FULL = 9,    /* trajectory queue full */
+    FW_REASON_PARAM_UNKNOWN = 10,
+    FW_REASON_PARAM_RANGE = 11,
+    FW_REASON_PARAM_SET = 12,    /* value in range, but the geometry it gives is invalid */
+    FW_REASON_STORAGE = 13,      /* parameters could not be saved */
+    FW_REASON_TIMING = 14,       /* a timed point asks for more than the slide limits allow */
+    FW_REASON_COUNT
+} fw_reason;
+
+#endif

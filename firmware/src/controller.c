@@ -1,0 +1,386 @@
+/* State, safety supervision and the execution of motion at the control segment rate. */
+#include "fw/controller_internal.h"
+
+#include <string.h>
+
+#include "tse/fk.h"
+
+/* Planned slide motion keeps this much of the step generator's capacity in hand. */
+#define STEP_RATE_MARGIN TSE_R(0.9)
+/* Setpoints the control loop keeps queued ahead of the step interrupt. */
+#define QUEUE_AHEAD 2u
+/* Shortest controlled stop [s]. */
+#define MIN_STOP_TIME TSE_R(0.02)
+
+static uint64_t now_us(fw_controller *c)
+{
+    return c->hal.clock.now_us(c->hal.clock.ctx);
+}
+
+int32_t fw_to_steps(const fw_controller *c, tse_real s)
+{
+    const tse_real x = s * (tse_real)c->params.v[FP_STEPS_PER_M];
+    return (int32_t)(x >= TSE_R(0.0) ? x + TSE_R(0.5) : x - TSE_R(0.5));
+}
+
+void fw_set_state(fw_controller *c, fw_state s)
+{
+    c->state = s;
+}
+
+void fw_drives(fw_controller *c, bool on)
+{
+    c->drives_on = on;
+    c->hal.stepper.enable(c->hal.stepper.ctx, on);
+}
+
+int fw_apply_params(fw_controller *c, const fw_param_set *s)
+{
+    tse_params kp;
+    tse_geometry g;
+    if (fw_params_check(s) >= 0)
+        return -1;
+    fw_params_kinematics(s, &kp);
+    if (tse_geometry_init(&g, &kp) != TSE_PARAM_OK)
+        return -1;
+    c->params = *s;
+    c->geom = g;
+    const tse_real micro = TSE_R(1e-6);
+    const tse_real spm = (tse_real)s->v[FP_STEPS_PER_M];
+    /* The step generator's ceiling, with room for the half-step rounding of each segment. */
+    const tse_real by_rate = STEP_RATE_MARGIN * (tse_real)s->v[FP_STEP_RATE_MAX] / spm;
+    const tse_real by_isr = STEP_RATE_MARGIN * (tse_real)stepgen_capacity(&c->sg.cfg, true) *
+                            (tse_real)c->cfg.segment_hz / spm;
+    tse_real vmax = (tse_real)s->v[FP_SLIDE_VMAX] * micro;
+    if (by_rate < vmax)
+        vmax = by_rate;
+    if (by_isr < vmax)
+        vmax = by_isr;
+    c->lim.slide_vmax = vmax;
+    c->lim.slide_amax = (tse_real)s->v[FP_SLIDE_AMAX] * micro;
+    c->lim.plate_vmax = (tse_real)s->v[FP_PLATE_VMAX] * micro;
+    c->lim.plate_amax = (tse_real)s->v[FP_PLATE_AMAX] * micro;
+    c->lim.plate_jmax = (tse_real)s->v[FP_PLATE_JMAX] * micro;
+    c->lim.plate_wmax = (tse_real)s->v[FP_PLATE_WMAX] * micro;
+    c->lim.plate_dwmax = (tse_real)s->v[FP_PLATE_DWMAX] * micro;
+    c->lim.segment_hz = (tse_real)c->cfg.segment_hz;
+    return 0;
+}
+
+int fw_init(fw_controller *c, const fw_hal *hal, const fw_config *cfg)
+{
+    memset(c, 0, sizeof *c);
+    if (cfg->node == 0 || cfg->node > PROTO_NODE_MASK || cfg->segment_hz == 0 ||
+        cfg->step_hz % cfg->segment_hz != 0)
+        return -1;
+    c->hal = *hal;
+    c->cfg = *cfg;
+    c->state = FW_STATE_BOOT;
+    const stepgen_config sc = {cfg->step_hz / cfg->segment_hz, 1u, 2u};
+    const int32_t zero[STEPGEN_AXES] = {0};
+    if (stepgen_init(&c->sg, &sc, zero) != 0)
+        return -1;
+
+    fw_param_set s;
+    fw_params_default(&s);
+    uint8_t buf[256];
+    const int n = hal->storage.load(hal->storage.ctx, buf, sizeof buf);
+    if (n > 0)
+        fw_params_deserialize(&s, buf, (size_t)n); /* a bad record leaves the defaults */
+    if (fw_apply_params(c, &s) != 0) {
+        fw_params_default(&s);
+        if (fw_apply_params(c, &s) != 0)
+            return -1;
+    }
+    fw_traj_start(&c->traj, &c->lim, c->geom.home_pose, c->q);
+    fw_drives(c, false);
+    const uint64_t t = now_us(c);
+    c->next_status_us = t;
+    c->next_telemetry_us = t;
+    fw_set_state(c, FW_STATE_DISABLED);
+    return 0;
+}
+
+void fw_estop(fw_controller *c)
+{
+    /* Stepping ends now, not after a ramp: the queued segments go too. */
+    stepgen_abort(&c->sg);
+    fw_drives(c, false);
+    c->src = FW_SRC_NONE;
+    c->stopping = false;
+    c->home.active = false;
+    c->homed = false; /* steps may have been lost under the abrupt stop: home again */
+    c->pose_known = false;
+    c->fault = FW_FAULT_ESTOP;
+    c->pending_fault = FW_FAULT_NONE;
+    fw_set_state(c, FW_STATE_ESTOP);
+}
+
+static void latch_fault(fw_controller *c, fw_fault f)
+{
+    c->fault = f;
+    c->pending_fault = FW_FAULT_NONE;
+    c->src = FW_SRC_NONE;
+    c->stopping = false;
+    c->home.active = false;
+    fw_drives(c, false);
+    fw_set_state(c, FW_STATE_FAULT);
+}
+
+void fw_stop_motion(fw_controller *c)
+{
+    if (c->home.active) {
+        /* Seeking and releasing have no path to slow down along: homing ramps its joint speeds
+         * down itself.  Its final joint move stops like any source, below. */
+        c->home.abort = true;
+        fw_set_state(c, FW_STATE_STOPPING);
+        if (c->src == FW_SRC_NONE)
+            return;
+    }
+    if (c->src == FW_SRC_NONE || c->stopping)
+        return;
+    /* A cycloidal ramp of the path's time rate from 1 to 0: a slide moving at v decelerates at
+     * most 2 v / T, which the ramp length keeps within the slide acceleration limit. */
+    tse_real v = TSE_R(0.0);
+    for (int k = 0; k < 6; ++k) {
+        const tse_real vk = tse_fabs(c->q[k] - c->q_prev[k]) * (tse_real)c->cfg.segment_hz;
+        if (vk > v)
+            v = vk;
+    }
+    tse_real T = TSE_R(2.0) * v / (TSE_R(0.9) * c->lim.slide_amax);
+    if (T < MIN_STOP_TIME)
+        T = MIN_STOP_TIME;
+    c->stopping = true;
+    c->stop_t = TSE_R(0.0);
+    c->stop_T = T;
+    fw_set_state(c, FW_STATE_STOPPING);
+}
+
+void fw_fault_raise(fw_controller *c, fw_fault f)
+{
+    if (c->state == FW_STATE_FAULT || c->state == FW_STATE_ESTOP)
+        return;
+    if (c->state == FW_STATE_MOVING || c->state == FW_STATE_STOPPING || c->state == FW_STATE_HOMING) {
+        if (c->pending_fault == FW_FAULT_NONE)
+            c->pending_fault = f;
+        fw_stop_motion(c);
+        return;
+    }
+    latch_fault(c, f);
+}
+
+void fw_start_source(fw_controller *c, fw_source src)
+{
+    c->src = src;
+    c->tau = TSE_R(0.0);
+    c->segments_run = 0;
+    c->stopping = false;
+    fw_set_state(c, FW_STATE_MOVING);
+}
+
+/* Path time of the next segment: on the planner's grid exactly while running, so execution
+ * solves the very poses validation solved; along the stop ramp when stopping.  *last is set on
+ * the segment that ends the ramp or the source. */
+static tse_real advance(fw_controller *c, tse_real end, bool *last)
+{
+    const tse_real dt = TSE_R(1.0) / (tse_real)c->cfg.segment_hz;
+    *last = false;
+    if (c->stopping) {
+        c->stop_t += dt;
+        tse_real rate = TSE_R(0.0);
+        if (c->stop_t < c->stop_T) {
+            const tse_real x = c->stop_t / c->stop_T;
+            rate = TSE_R(1.0) - (x - tse_sin(TSE_R(2.0) * TSE_PI * x) / (TSE_R(2.0) * TSE_PI));
+        } else {
+            *last = true;
+        }
+        tse_real tau = c->tau + rate * dt;
+        if (tau >= end) {
+            tau = end;
+            *last = true;
+        }
+        return tau;
+    }
+    tse_real tau = (tse_real)(c->segments_run + 1u) / (tse_real)c->cfg.segment_hz;
+    if (tau >= end) {
+        tau = end;
+        *last = true;
+    }
+    return tau;
+}
+
+static void push_slides(fw_controller *c, const tse_real q[6])
+{
+    int32_t target[STEPGEN_AXES];
+    for (int k = 0; k < 6; ++k) {
+        target[k] = fw_to_steps(c, q[k]);
+        c->q_prev[k] = c->q[k];
+        c->q[k] = q[k];
+    }
+    stepgen_push(&c->sg, target);
+    ++c->segments_run;
+}
+
+/* One control segment of a pose source: advance path time, solve, queue the setpoint. */
+static void run_source(fw_controller *c)
+{
+    bool last;
+    tse_real end;
+    if (c->src == FW_SRC_MOVE)
+        end = c->move.prof.T;
+    else
+        end = c->traj.closed ? fw_traj_end(&c->traj) : (tse_real)INFINITY;
+    const tse_real tau = advance(c, end, &last);
+    tse_real pose[6];
+    const bool inside = c->src == FW_SRC_MOVE ? (fw_move_pose(&c->move, tau, pose), true)
+                                               : fw_traj_pose(&c->traj, tau, pose);
+    if (!inside) {
+        /* The stream ran dry before its last point: hold its newest point, and fault. */
+        last = true;
+        c->pending_fault = FW_FAULT_UNDERRUN;
+    }
+    tse_ik_result r;
+    if (tse_ik(&c->geom, pose, c->q, &r) != TSE_OK) {
+        /* Validation solved this path, so this is a defect: there is no pose to go on to. */
+        c->src = FW_SRC_NONE;
+        c->pending_fault = FW_FAULT_PLANNER;
+        return;
+    }
+    for (int k = 0; k < 6; ++k)
+        c->pose[k] = pose[k];
+    push_slides(c, r.q);
+    c->tau = tau;
+    if (last)
+        c->src = FW_SRC_NONE;
+}
+
+/* The joint-space move that ends homing: straight in slide space. */
+static void run_joint(fw_controller *c)
+{
+    bool last;
+    const tse_real tau = advance(c, c->joint.prof.T, &last);
+    tse_real u, du, ddu;
+    fw_profile_eval(&c->joint.prof, tau, &u, &du, &ddu);
+    tse_real q[6];
+    for (int k = 0; k < 6; ++k)
+        q[k] = tau >= c->joint.prof.T ? c->joint.to[k] : c->joint.from[k] + u * (c->joint.to[k] - c->joint.from[k]);
+    push_slides(c, q);
+    c->tau = tau;
+    if (last)
+        c->src = FW_SRC_NONE;
+}
+
+static void supervise(fw_controller *c)
+{
+    if (c->state == FW_STATE_BOOT)
+        return;
+    if (c->hal.inputs.estop(c->hal.inputs.ctx)) {
+        if (c->state != FW_STATE_ESTOP)
+            fw_estop(c);
+        return;
+    }
+    const bool active = c->state == FW_STATE_IDLE || c->state == FW_STATE_MOVING ||
+                        c->state == FW_STATE_STOPPING || c->state == FW_STATE_HOMING;
+    if (!c->home.active && active && (c->hal.inputs.limits(c->hal.inputs.ctx) & 0x3F3Fu)) {
+        c->homed = false;
+        fw_fault_raise(c, FW_FAULT_LIMIT);
+    }
+    hal_can_state cs;
+    c->hal.can.state(c->hal.can.ctx, &cs);
+    if (cs.bus_off && c->state != FW_STATE_FAULT)
+        fw_fault_raise(c, FW_FAULT_BUS_OFF);
+    const uint32_t wd = (uint32_t)c->params.v[FP_WATCHDOG_MS];
+    if (wd > 0 && c->drives_on && now_us(c) - c->last_heartbeat_us > (uint64_t)wd * 1000u)
+        fw_fault_raise(c, FW_FAULT_WATCHDOG);
+}
+
+void fw_control_tick(fw_controller *c)
+{
+    supervise(c);
+    if (c->state == FW_STATE_ESTOP || c->state == FW_STATE_FAULT || c->state == FW_STATE_BOOT)
+        return;
+    if (c->home.active && c->src == FW_SRC_NONE) {
+        fw_homing_tick(c);
+        return;
+    }
+    while (c->src != FW_SRC_NONE && stepgen_queued(&c->sg) < QUEUE_AHEAD) {
+        if (c->src == FW_SRC_JOINT)
+            run_joint(c);
+        else
+            run_source(c);
+    }
+    if (c->src != FW_SRC_NONE || !stepgen_idle(&c->sg))
+        return;
+    /* The source is exhausted and the slides are at their last setpoint. */
+    if (c->home.active) {
+        fw_homing_tick(c); /* the joint move to the home pose ended */
+        return;
+    }
+    if (c->state == FW_STATE_MOVING || c->state == FW_STATE_STOPPING) {
+        c->stopping = false;
+        if (c->pending_fault != FW_FAULT_NONE)
+            latch_fault(c, c->pending_fault);
+        else
+            fw_set_state(c, FW_STATE_IDLE);
+    }
+}
+
+static void send_status(fw_controller *c)
+{
+    uint8_t flags = 0;
+    if (c->homed)
+        flags |= 1u;
+    if (c->drives_on)
+        flags |= 2u;
+    if (c->hal.inputs.estop(c->hal.inputs.ctx))
+        flags |= 4u;
+    if (c->hal.inputs.limits(c->hal.inputs.ctx) & 0x3F3Fu)
+        flags |= 8u;
+    hal_can_state cs;
+    c->hal.can.state(c->hal.can.ctx, &cs);
+    if (cs.error_passive)
+        flags |= 16u;
+    const int32_t v[7] = {c->state, c->fault, flags, (int32_t)fw_traj_depth(&c->traj),
+                          (int32_t)fw_traj_free(&c->traj), c->last_seq, c->counter++};
+    fw_send(c, PM_STATUS, v);
+}
+
+static void send_telemetry(fw_controller *c)
+{
+    int32_t steps[6];
+    stepgen_positions(&c->sg, steps);
+    tse_real q[6];
+    const tse_real spm = (tse_real)c->params.v[FP_STEPS_PER_M];
+    for (int k = 0; k < 6; ++k)
+        q[k] = (tse_real)steps[k] / spm;
+    for (int k = 0; k < 3; ++k) {
+        const int32_t v[2] = {(int32_t)(q[2 * k] * TSE_R(1e9)), (int32_t)(q[2 * k + 1] * TSE_R(1e9))};
+        fw_send(c, (proto_msg)(PM_SLIDES_A + k), v);
+    }
+    if (!c->homed)
+        return; /* no zero, no pose */
+    tse_fk_result fk;
+    if (tse_fk(&c->geom, q, c->pose_known ? c->pose : c->geom.home_pose, &fk) != TSE_OK)
+        return;
+    for (int k = 0; k < 3; ++k) {
+        const int32_t v[2] = {(int32_t)(fk.pose[2 * k] * TSE_R(1e6)), (int32_t)(fk.pose[2 * k + 1] * TSE_R(1e6))};
+        fw_send(c, (proto_msg)(PM_FK_A + k), v);
+    }
+}
+
+void fw_poll(fw_controller *c)
+{
+    hal_can_frame f;
+    while (c->hal.can.receive(c->hal.can.ctx, &f) == 1)
+        fw_handle_frame(c, &f);
+    const uint64_t t = now_us(c);
+    if (t >= c->next_status_us) {
+        send_status(c);
+        c->next_status_us = t + (uint64_t)c->params.v[FP_STATUS_MS] * 1000u;
+    }
+    const uint32_t tel = (uint32_t)c->params.v[FP_TELEMETRY_MS];
+    if (tel > 0 && t >= c->next_telemetry_us) {
+        send_telemetry(c);
+        c->next_telemetry_us = t + (uint64_t)tel * 1000u;
+    }
+}

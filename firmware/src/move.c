@@ -1,0 +1,153 @@
+#include "fw/move.h"
+
+#include "fw/quat.h"
+#include "fw/slide_check.h"
+
+/* Planning keeps this fraction of every slide limit in hand for the step quantisation. */
+#define LIMIT_MARGIN TSE_R(0.95)
+#define MAX_STRETCH_ROUNDS 6
+
+void fw_move_pose(const fw_move *mv, tse_real t, tse_real pose[6])
+{
+    tse_real u, du, ddu;
+    fw_profile_eval(&mv->prof, t, &u, &du, &ddu);
+    if (t >= mv->prof.T) {
+        for (int k = 0; k < 6; ++k)
+            pose[k] = mv->to[k]; /* the end is the commanded pose, bit for bit */
+        return;
+    }
+    for (int k = 0; k < 3; ++k)
+        pose[k] = mv->from[k] + u * mv->dp[k];
+    tse_real q[4];
+    fw_quat_slerp(mv->q0, mv->q1, u, q);
+    fw_quat_to_rpy(q, &pose[3]);
+}
+
+tse_real fw_move_segment_time(const fw_move *mv, const fw_limits *lim, uint32_t k)
+{
+    if (k >= mv->segments)
+        return mv->prof.T;
+    return (tse_real)k / lim->segment_hz;
+}
+
+static tse_real min_pos(tse_real a, tse_real b)
+{
+    return a < b ? a : b;
+}
+
+/* Walks the path as execution will.  Returns 0 with the worst speed and acceleration ratios to
+ * the slide limits, or -1 with the first failing point in *res. */
+/* Walks the path as execution will.  Returns 0 with the worst speed and acceleration ratios to
+ * the slide limits, or -1 with the first failing point in *res. */
+static int walk(const fw_move *mv, const tse_geometry *g, const fw_limits *lim,
+                const tse_real q_from[6], tse_real *v_ratio, tse_real *a_ratio, fw_plan_result *res)
+{
+    fw_slide_check chk;
+    fw_slide_check_start(&chk, lim->slide_vmax, lim->slide_amax, lim->segment_hz, q_from);
+    tse_real t_prev = TSE_R(0.0);
+    for (uint32_t s = 1; s <= mv->segments; ++s) {
+        const tse_real t = fw_move_segment_time(mv, lim, s);
+        tse_real pose[6];
+        fw_move_pose(mv, t, pose);
+        tse_ik_result r;
+        if (tse_ik(g, pose, chk.q, &r) != TSE_OK) {
+            tse_real u, du, ddu;
+            fw_profile_eval(&mv->prof, t, &u, &du, &ddu);
+            res->reason = FW_REASON_KINEMATICS;
+            res->status = r.status;
+            res->scissor = r.scissor;
+            res->segment = s;
+            res->where = u;
+            return -1;
+        }
+        fw_slide_check_feed(&chk, r.q, t - t_prev);
+        t_prev = t;
+    }
+    fw_slide_check_finish(&chk);
+    *v_ratio = chk.v_ratio;
+    *a_ratio = chk.a_ratio;
+    return 0;
+}
+
+int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const tse_real from[6],
+                 const tse_real to[6], fw_move_kind kind, tse_real value, const tse_real q_from[6],
+                 fw_plan_result *res)
+{
+    res->reason = FW_REASON_NONE;
+    res->status = TSE_OK;
+    res->scissor = 0;
+    res->segment = 0;
+    res->where = TSE_R(0.0);
+    for (int k = 0; k < 6; ++k) {
+        if (!isfinite(from[k]) || !isfinite(to[k]) || !isfinite(q_from[k])) {
+            res->reason = FW_REASON_RANGE;
+            return -1;
+        }
+        mv->from[k] = from[k];
+        mv->to[k] = to[k];
+    }
+    if (!(value > TSE_R(0.0)) || !isfinite(value)) {
+        res->reason = FW_REASON_RANGE;
+        return -1;
+    }
+    tse_real len2 = TSE_R(0.0);
+    for (int k = 0; k < 3; ++k) {
+        mv->dp[k] = to[k] - from[k];
+        len2 += mv->dp[k] * mv->dp[k];
+    }
+    mv->length = tse_sqrt(len2);
+    fw_quat_from_rpy(from[3], from[4], from[5], mv->q0);
+    fw_quat_from_rpy(to[3], to[4], to[5], mv->q1);
+    mv->angle = fw_quat_angle(mv->q0, mv->q1);
+    mv->stretch = TSE_R(1.0);
+
+    /* Limits on u: whichever of translation and rotation binds.  The angular jerk limit keeps
+     * the plate's ramp-time character: dwmax * jmax / amax. */
+    const tse_real huge = (tse_real)INFINITY;
+    tse_real V = huge, A = huge, J = huge;
+    if (mv->length > TSE_R(0.0)) {
+        V = min_pos(V, lim->plate_vmax / mv->length);
+        A = min_pos(A, lim->plate_amax / mv->length);
+        J = min_pos(J, lim->plate_jmax / mv->length);
+        if (kind == FW_MOVE_SPEED)
+            V = min_pos(V, value / mv->length);
+    }
+    if (mv->angle > TSE_R(0.0)) {
+        V = min_pos(V, lim->plate_wmax / mv->angle);
+        A = min_pos(A, lim->plate_dwmax / mv->angle);
+        J = min_pos(J, lim->plate_dwmax * lim->plate_jmax / lim->plate_amax / mv->angle);
+    }
+    const tse_real min_T = kind == FW_MOVE_DURATION ? value : TSE_R(0.0);
+    const tse_real D = (mv->length > TSE_R(0.0) || mv->angle > TSE_R(0.0)) ? TSE_R(1.0) : TSE_R(0.0);
+    if (D == TSE_R(0.0))
+        V = A = J = TSE_R(1.0); /* a null move: only its duration matters */
+    if (fw_profile_plan(&mv->prof, D, V, A, J, min_T) != 0) {
+        res->reason = FW_REASON_RANGE;
+        return -1;
+    }
+
+    fw_limits margin = *lim;
+    margin.slide_vmax *= LIMIT_MARGIN;
+    margin.slide_amax *= LIMIT_MARGIN;
+    for (int round = 0; round < MAX_STRETCH_ROUNDS; ++round) {
+        const tse_real segs = tse_ceil(mv->prof.T * lim->segment_hz);
+        mv->segments = segs < TSE_R(1.0) ? 1u : (uint32_t)segs;
+        tse_real vr, ar;
+        if (walk(mv, g, &margin, q_from, &vr, &ar, res) != 0)
+            return -1;
+        /* Speeds scale with 1/k and accelerations with 1/k^2 under a time stretch by k. */
+        tse_real k = vr;
+        const tse_real ka = tse_sqrt(ar);
+        if (ka > k)
+            k = ka;
+        if (k <= TSE_R(1.0))
+            return 0;
+        /* Sampling moves with the stretch, so aim a little beyond the measured need. */
+        k *= TSE_R(1.02);
+        fw_profile_stretch(&mv->prof, k);
+        mv->stretch *= k;
+    }
+    /* Still too fast after every round: refuse rather than exceed a limit. */
+    res->reason = FW_REASON_TIMING;
+    return -1;
+}

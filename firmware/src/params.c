@@ -1,0 +1,146 @@
+#include "fw/params.h"
+
+#include "fw/types.h"
+
+/* Prototype defaults (paper, section VI; kinematics.md).  The motion limits are those of a
+ * lead-screw slide with 3200 microsteps per 5 mm, kept well inside the step rate. */
+const fw_param_def fw_param_table[FP_COUNT] = {
+    [FP_L] = {"L", "um", 100000, 10000000, 1727000, "total scissor length"},
+    [FP_K1] = {"k1", "ppm", 1, 1000000, 264700, "l0 / L"},
+    [FP_ETA] = {"eta", "urad", -1570796, 1570796, 523599, "slide angle from the local x axis"},
+    [FP_K3] = {"k3", "ppm", 0, 1000000, 18600, "r_act / L"},
+    [FP_K4] = {"k4", "ppm", 1, 1000000, 117650, "r_top / L"},
+    [FP_ALPHA_MIN] = {"alpha_min", "urad", 1, 1570796, 188727, "scissor angle stop, low"},
+    [FP_ALPHA_MAX] = {"alpha_max", "urad", 1, 1570796, 1215271, "scissor angle stop, high"},
+    [FP_S_MIN] = {"s_min", "um", 0, 5000000, 0, "slide stroke, low end"},
+    [FP_S_MAX] = {"s_max", "um", 1, 5000000, 900000, "slide stroke, high end"},
+    [FP_MU_MIN] = {"mu_min", "ppm", 0, 999999, 50000, "type-1 singularity margin"},
+    [FP_NU_MIN] = {"nu_min", "ppm", 0, 999999, 1000, "type-2 singularity margin"},
+    [FP_STEPS_PER_M] = {"steps_per_m", "1/m", 1000, 10000000, 640000, "slide steps per metre"},
+    [FP_SLIDE_VMAX] = {"slide_vmax", "um/s", 1000, 2000000, 200000, "slide speed limit"},
+    [FP_SLIDE_AMAX] = {"slide_amax", "um/s^2", 1000, 20000000, 1000000, "slide acceleration limit"},
+    [FP_PLATE_VMAX] = {"plate_vmax", "um/s", 1000, 5000000, 300000, "plate speed limit"},
+    [FP_PLATE_AMAX] = {"plate_amax", "um/s^2", 1000, 50000000, 1000000, "plate acceleration limit"},
+    [FP_PLATE_JMAX] = {"plate_jmax", "um/s^3", 1000, 500000000, 10000000, "plate jerk limit"},
+    [FP_PLATE_WMAX] = {"plate_wmax", "urad/s", 1000, 10000000, 500000, "plate angular speed limit"},
+    [FP_PLATE_DWMAX] = {"plate_dwmax", "urad/s^2", 1000, 100000000, 2000000,
+                        "plate angular acceleration limit"},
+    [FP_STEP_RATE_MAX] = {"step_rate_max", "1/s", 1000, 500000, 200000, "step rate limit per slide"},
+    [FP_WATCHDOG_MS] = {"watchdog_ms", "ms", 0, 60000, 500, "host heartbeat timeout (0: off)"},
+    [FP_STATUS_MS] = {"status_ms", "ms", 10, 10000, 100, "STATUS period"},
+    [FP_TELEMETRY_MS] = {"telemetry_ms", "ms", 0, 10000, 50, "SLIDES and FK period (0: off)"},
+    [FP_HOMING_SPEED] = {"homing_speed", "um/s", 100, 500000, 20000, "homing speed"},
+    [FP_HOMING_BACKOFF] = {"homing_backoff", "um", 0, 100000, 2000, "back-off from the switch"},
+};
+
+void fw_params_default(fw_param_set *s)
+{
+    for (int i = 0; i < FP_COUNT; ++i)
+        s->v[i] = fw_param_table[i].def;
+}
+
+void fw_params_kinematics(const fw_param_set *s, tse_params *p)
+{
+    const tse_real micro = TSE_R(1e-6);
+    p->L = (tse_real)s->v[FP_L] * micro;
+    p->k1 = (tse_real)s->v[FP_K1] * micro;
+    p->eta = (tse_real)s->v[FP_ETA] * micro;
+    p->k3 = (tse_real)s->v[FP_K3] * micro;
+    p->k4 = (tse_real)s->v[FP_K4] * micro;
+    p->alpha_min = (tse_real)s->v[FP_ALPHA_MIN] * micro;
+    p->alpha_max = (tse_real)s->v[FP_ALPHA_MAX] * micro;
+    p->s_min = (tse_real)s->v[FP_S_MIN] * micro;
+    p->s_max = (tse_real)s->v[FP_S_MAX] * micro;
+    p->mu_min = (tse_real)s->v[FP_MU_MIN] * micro;
+    p->nu_min = (tse_real)s->v[FP_NU_MIN] * micro;
+}
+
+/* Which firmware parameter carries each kinematic one. */
+static const fw_param_id kin_param[TSE_PARAM_COUNT] = {
+    [TSE_PARAM_L] = FP_L,           [TSE_PARAM_K1] = FP_K1,
+    [TSE_PARAM_ETA] = FP_ETA,       [TSE_PARAM_K3] = FP_K3,
+    [TSE_PARAM_K4] = FP_K4,         [TSE_PARAM_ALPHA_MIN] = FP_ALPHA_MIN,
+    [TSE_PARAM_ALPHA_MAX] = FP_ALPHA_MAX, [TSE_PARAM_S_MIN] = FP_S_MIN,
+    [TSE_PARAM_S_MAX] = FP_S_MAX,   [TSE_PARAM_MU_MIN] = FP_MU_MIN,
+    [TSE_PARAM_NU_MIN] = FP_NU_MIN,
+};
+
+int fw_params_check(const fw_param_set *s)
+{
+    for (int i = 0; i < FP_COUNT; ++i)
+        if (s->v[i] < fw_param_table[i].min || s->v[i] > fw_param_table[i].max)
+            return i;
+    tse_params p;
+    fw_params_kinematics(s, &p);
+    const tse_param_id bad = tse_params_check(&p);
+    if (bad != TSE_PARAM_OK)
+        return (int)kin_param[bad];
+    return -1;
+}
+
+int fw_params_set_one(fw_param_set *s, uint16_t id, int32_t value)
+{
+    if (id >= FP_COUNT)
+        return FW_REASON_PARAM_UNKNOWN;
+    if (value < fw_param_table[id].min || value > fw_param_table[id].max)
+        return FW_REASON_PARAM_RANGE;
+    fw_param_set next = *s;
+    next.v[id] = value;
+    if (fw_params_check(&next) >= 0)
+        return FW_REASON_PARAM_SET;
+    *s = next;
+    return 0;
+}
+
+/* CRC-32 (IEEE 802.3, reflected), bitwise: the record is small and written rarely. */
+static uint32_t crc32(const uint8_t *p, size_t n)
+{
+    uint32_t c = 0xFFFFFFFFu;
+    for (size_t i = 0; i < n; ++i) {
+        c ^= p[i];
+        for (int k = 0; k < 8; ++k)
+            c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    }
+    return ~c;
+}
+
+#define RECORD_MAGIC 0x54534550u /* "PEST" little-endian: TSE Parameters */
+#define RECORD_LEN (4u + 2u + 4u * FP_COUNT + 4u)
+
+static void put32(uint8_t *p, uint32_t v)
+{
+    for (int k = 0; k < 4; ++k)
+        p[k] = (uint8_t)(v >> (8 * k));
+}
+
+static uint32_t get32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+size_t fw_params_serialize(const fw_param_set *s, uint8_t *buf, size_t cap)
+{
+    if (cap < RECORD_LEN)
+        return 0;
+    put32(buf, RECORD_MAGIC);
+    buf[4] = (uint8_t)FP_COUNT;
+    buf[5] = 0;
+    for (int i = 0; i < FP_COUNT; ++i)
+        put32(&buf[6 + 4 * i], (uint32_t)s->v[i]);
+    put32(&buf[RECORD_LEN - 4u], crc32(buf, RECORD_LEN - 4u));
+    return RECORD_LEN;
+}
+
+int fw_params_deserialize(fw_param_set *s, const uint8_t *buf, size_t len)
+{
+    if (len != RECORD_LEN || get32(buf) != RECORD_MAGIC || buf[4] != FP_COUNT ||
+        get32(&buf[RECORD_LEN - 4u]) != crc32(buf, RECORD_LEN - 4u))
+        return -1;
+    fw_param_set next;
+    for (int i = 0; i < FP_COUNT; ++i)
+        next.v[i] = (int32_t)get32(&buf[6 + 4 * i]);
+    if (fw_params_check(&next) >= 0)
+        return -1;
+    *s = next;
+    return 0;
+}

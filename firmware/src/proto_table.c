@@ -1,0 +1,167 @@
+/* The protocol, declared once.  See fw/proto_table.h. */
+#include "fw/proto_table.h"
+
+#include "fw/types.h"
+#include "tse/status.h"
+
+const proto_enum_entry proto_state_names[] = {
+    {FW_STATE_BOOT, "boot"},         {FW_STATE_DISABLED, "disabled"}, {FW_STATE_HOMING, "homing"},
+    {FW_STATE_IDLE, "idle"},         {FW_STATE_MOVING, "moving"},     {FW_STATE_STOPPING, "stopping"},
+    {FW_STATE_FAULT, "fault"},       {FW_STATE_ESTOP, "estop"},       {0, 0},
+};
+
+const proto_enum_entry proto_fault_names[] = {
+    {FW_FAULT_NONE, "none"},
+    {FW_FAULT_WATCHDOG, "watchdog"},
+    {FW_FAULT_LIMIT, "limit"},
+    {FW_FAULT_BUS_OFF, "bus_off"},
+    {FW_FAULT_PLANNER, "planner"},
+    {FW_FAULT_STEP_OVERRUN, "step_overrun"},
+    {FW_FAULT_HOMING, "homing"},
+    {FW_FAULT_ESTOP, "estop"},
+    {FW_FAULT_UNDERRUN, "underrun"},
+    {FW_FAULT_PLANT, "plant"},
+    {0, 0},
+};
+
+const proto_enum_entry proto_reason_names[] = {
+    {FW_REASON_NONE, "none"},
+    {FW_REASON_BAD_LENGTH, "bad_length"},
+    {FW_REASON_UNKNOWN, "unknown"},
+    {FW_REASON_RANGE, "range"},
+    {FW_REASON_STATE, "state"},
+    {FW_REASON_NOT_HOMED, "not_homed"},
+    {FW_REASON_INCOMPLETE, "incomplete"},
+    {FW_REASON_STALE, "stale"},
+    {FW_REASON_KINEMATICS, "kinematics"},
+    {FW_REASON_QUEUE_FULL, "queue_full"},
+    {FW_REASON_PARAM_UNKNOWN, "param_unknown"},
+    {FW_REASON_PARAM_RANGE, "param_range"},
+    {FW_REASON_PARAM_SET, "param_set"},
+    {FW_REASON_STORAGE, "storage"},
+    {FW_REASON_TIMING, "timing"},
+    {0, 0},
+};
+
+const proto_enum_entry proto_kin_status_names[] = {
+    {TSE_OK, "ok"},           {TSE_INVALID, "invalid"},   {TSE_UNREACHABLE, "unreachable"},
+    {TSE_BELOW, "below"},     {TSE_ALPHA, "alpha"},       {TSE_STROKE, "stroke"},
+    {TSE_SINGULAR, "singular"}, {TSE_DEGENERATE, "degenerate"}, {TSE_NOCONVERGE, "noconverge"},
+    {0, 0},
+};
+
+const proto_enum_entry proto_move_kind_names[] = {
+    {0, "duration"},
+    {1, "speed"},
+    {0, 0},
+};
+
+/* Field shorthands: name, type, byte offset, raw range, unit, scale, value names, doc. */
+#define SEQ(off) {"seq", PF_U8, off, 0, 255, "", 1.0, 0, "sequence number, echoed in ACK/REJECT"}
+#define POS24(nm, off, doc) {nm, PF_I24, off, -4000000, 4000000, "m", 1e-6, 0, doc}
+#define ANG24(nm, off, doc) {nm, PF_I24, off, -3141593, 3141593, "rad", 1e-6, 0, doc}
+#define FULL_I32(nm, off, unit, scale, doc) {nm, PF_I32, off, INT32_MIN, INT32_MAX, unit, scale, 0, doc}
+
+const proto_def proto_table[PM_COUNT] = {
+    {PM_ESTOP, 0x01, "ESTOP", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
+     "Emergency stop: stepping is cut at once and the controller latches an e-stop fault. Node 0 "
+     "stops every controller on the bus."},
+    {PM_STOP, 0x02, "STOP", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
+     "Controlled stop: the running motion decelerates along its path within the limits; the "
+     "trajectory queue is dropped. Node 0 stops every controller."},
+    {PM_REJECT, 0x03, "REJECT", PROTO_TO_HOST, 8, 7,
+     {{"function", PF_U8, 0, 0, 127, "", 1.0, 0, "function code of the refused message"},
+      {"seq", PF_U8, 1, 0, 255, "", 1.0, 0, "its sequence number (0 when it had none)"},
+      {"reason", PF_U8, 2, 0, FW_REASON_COUNT - 1, "", 1.0, proto_reason_names, "why"},
+      {"scissor", PF_U8, 3, 0, 3, "", 1.0, 0, "first failing scissor (1..3), 0 if none"},
+      {"kin_status", PF_U8, 4, 0, TSE_STATUS_COUNT - 1, "", 1.0, proto_kin_status_names,
+       "kinematic status of the first failing point"},
+      {"field", PF_U8, 5, 0, 255, "", 1.0, 0, "index of the offending field, or parameter"},
+      {"where", PF_U16, 6, 0, 65535, "", 1e-3, 0,
+       "position of the first failing point along the path, 0..1000 per mille"}},
+     "Every refused command gets one. Nothing of a refused command is applied."},
+    {PM_ACK, 0x04, "ACK", PROTO_TO_HOST, 8, 5,
+     {{"function", PF_U8, 0, 0, 127, "", 1.0, 0, "function code of the accepted message"},
+      {"seq", PF_U8, 1, 0, 255, "", 1.0, 0, "its sequence number"},
+      {"queue_depth", PF_U8, 2, 0, 255, "", 1.0, 0, "trajectory points waiting"},
+      {"queue_free", PF_U8, 3, 0, 255, "", 1.0, 0, "trajectory points that may still be sent"},
+      {"detail", PF_U32, 4, 0, INT32_MAX, "s", 1e-3, 0,
+       "for a move: its planned duration (after any stretching to the slide limits)"}},
+     "Every accepted command gets one; it is also the flow control of trajectory streaming."},
+    {PM_HOST_HEARTBEAT, 0x05, "HOST_HEARTBEAT", PROTO_TO_CONTROLLER, 1, 1,
+     {{"counter", PF_U8, 0, 0, 255, "", 1.0, 0, "free-running"}},
+     "The host is alive. Silence past the watchdog timeout stops the robot and latches a fault "
+     "(only while enabled)."},
+    {PM_ENABLE, 0x06, "ENABLE", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)}, "Energise the drives."},
+    {PM_DISABLE, 0x07, "DISABLE", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
+     "De-energise the drives (only at rest). The slides keep their zero."},
+    {PM_HOME, 0x08, "HOME", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
+     "Drive each slide to its low limit switch, back off, set its zero; then go to the home pose."},
+    {PM_CLEAR_FAULT, 0x09, "CLEAR_FAULT", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
+     "Leave the fault or e-stop state (the e-stop input must be closed). The drives stay off."},
+    {PM_POSE_A, 0x0A, "POSE_A", PROTO_TO_CONTROLLER, 7, 3,
+     {SEQ(0), POS24("x", 1, "plate centre X"), POS24("y", 4, "plate centre Y")},
+     "Pose part 1 of 3, staged under its sequence number."},
+    {PM_POSE_B, 0x0B, "POSE_B", PROTO_TO_CONTROLLER, 7, 3,
+     {SEQ(0), POS24("z", 1, "plate centre Z"), ANG24("roll", 4, "roll (about X, applied first)")},
+     "Pose part 2 of 3."},
+    {PM_POSE_C, 0x0C, "POSE_C", PROTO_TO_CONTROLLER, 7, 3,
+     {SEQ(0), ANG24("pitch", 1, "pitch (about Y)"), ANG24("yaw", 4, "yaw (about Z, applied last)")},
+     "Pose part 3 of 3."},
+    {PM_MOVE_COMMIT, 0x0D, "MOVE_COMMIT", PROTO_TO_CONTROLLER, 6, 3,
+     {SEQ(0),
+      {"kind", PF_U8, 1, 0, 1, "", 1.0, proto_move_kind_names, "what value gives"},
+      {"value", PF_U32, 2, 1, 3600000, "", 1.0, 0,
+       "duration in ms, or plate speed in um/s"}},
+     "Move to the staged pose of this sequence number, straight in position with the orientation "
+     "interpolated. Applied only if all three parts of this sequence arrived and it is newer than "
+     "the last accepted; the whole path is validated before the first step."},
+    {PM_TRAJ_COMMIT, 0x0E, "TRAJ_COMMIT", PROTO_TO_CONTROLLER, 6, 3,
+     {SEQ(0),
+      {"dt", PF_U32, 1, 1000, 60000000, "s", 1e-6, 0, "time from the previous point"},
+      {"flags", PF_U8, 5, 0, 1, "", 1.0, 0, "bit 0: last point of the trajectory"}},
+     "Queue the staged pose of this sequence number as a timed trajectory point."},
+    {PM_PARAM_GET, 0x0F, "PARAM_GET", PROTO_TO_CONTROLLER, 2, 1,
+     {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, "parameter id"}}, "Read a parameter."},
+    {PM_PARAM_SET, 0x10, "PARAM_SET", PROTO_TO_CONTROLLER, 6, 2,
+     {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, "parameter id"},
+      FULL_I32("value", 2, "", 1.0, "new value, in the parameter's integer unit")},
+     "Set a parameter (only while disabled or in fault); range-checked, then checked with the "
+     "whole set; a refused value changes nothing."},
+    {PM_PARAM_SAVE, 0x11, "PARAM_SAVE", PROTO_TO_CONTROLLER, 4, 1,
+     {{"magic", PF_U32, 0, 0x45564153, 0x45564153, "", 1.0, 0, "0x45564153 (\"SAVE\")"}},
+     "Store the parameter set in non-volatile memory."},
+    {PM_STATUS, 0x20, "STATUS", PROTO_TO_HOST, 8, 7,
+     {{"state", PF_U8, 0, 0, FW_STATE_COUNT - 1, "", 1.0, proto_state_names, "controller state"},
+      {"fault", PF_U8, 1, 0, FW_FAULT_COUNT - 1, "", 1.0, proto_fault_names, "latched fault"},
+      {"flags", PF_U8, 2, 0, 255, "", 1.0, 0,
+       "bit 0 homed, 1 drives enabled, 2 e-stop input open, 3 a limit switch pressed, "
+       "4 CAN error passive"},
+      {"queue_depth", PF_U8, 3, 0, 255, "", 1.0, 0, "trajectory points waiting"},
+      {"queue_free", PF_U8, 4, 0, 255, "", 1.0, 0, "trajectory points that may still be sent"},
+      {"last_seq", PF_U8, 5, 0, 255, "", 1.0, 0, "last accepted sequence number"},
+      {"counter", PF_U16, 6, 0, 65535, "", 1.0, 0, "free-running"}},
+     "Heartbeat of the controller, every status period."},
+    {PM_SLIDES_A, 0x21, "SLIDES_A", PROTO_TO_HOST, 8, 2,
+     {FULL_I32("s_a1", 0, "m", 1e-9, "slide A1"), FULL_I32("s_b1", 4, "m", 1e-9, "slide B1")},
+     "Commanded slide positions (the steps emitted), every telemetry period."},
+    {PM_SLIDES_B, 0x22, "SLIDES_B", PROTO_TO_HOST, 8, 2,
+     {FULL_I32("s_a2", 0, "m", 1e-9, "slide A2"), FULL_I32("s_b2", 4, "m", 1e-9, "slide B2")},
+     "Slides of scissor 2."},
+    {PM_SLIDES_C, 0x23, "SLIDES_C", PROTO_TO_HOST, 8, 2,
+     {FULL_I32("s_a3", 0, "m", 1e-9, "slide A3"), FULL_I32("s_b3", 4, "m", 1e-9, "slide B3")},
+     "Slides of scissor 3."},
+    {PM_FK_A, 0x24, "FK_A", PROTO_TO_HOST, 8, 2,
+     {FULL_I32("x", 0, "m", 1e-6, "plate X"), FULL_I32("y", 4, "m", 1e-6, "plate Y")},
+     "Plate pose from the forward kinematics of the slide positions, every telemetry period."},
+    {PM_FK_B, 0x25, "FK_B", PROTO_TO_HOST, 8, 2,
+     {FULL_I32("z", 0, "m", 1e-6, "plate Z"), FULL_I32("roll", 4, "rad", 1e-6, "roll")},
+     "Pose part 2."},
+    {PM_FK_C, 0x26, "FK_C", PROTO_TO_HOST, 8, 2,
+     {FULL_I32("pitch", 0, "rad", 1e-6, "pitch"), FULL_I32("yaw", 4, "rad", 1e-6, "yaw")},
+     "Pose part 3."},
+    {PM_PARAM_VALUE, 0x27, "PARAM_VALUE", PROTO_TO_HOST, 6, 2,
+     {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, "parameter id"},
+      FULL_I32("value", 2, "", 1.0, "value in the parameter's integer unit")},
+     "Answer to PARAM_GET and PARAM_SET."},
+};

@@ -1,0 +1,146 @@
+#include "fw/traj.h"
+
+#include "fw/quat.h"
+
+static void make_point(fw_traj_point *p, const tse_real pose[6], tse_real t, bool last,
+                       const tse_real near_q[4])
+{
+    for (int k = 0; k < 6; ++k)
+        p->pose[k] = pose[k];
+    fw_quat_from_rpy(pose[3], pose[4], pose[5], p->q0);
+    /* Keep successive quaternions on one hemisphere so that slerp takes the short way. */
+    if (near_q) {
+        const tse_real d = p->q0[0] * near_q[0] + p->q0[1] * near_q[1] + p->q0[2] * near_q[2] +
+                           p->q0[3] * near_q[3];
+        if (d < TSE_R(0.0))
+            for (int k = 0; k < 4; ++k)
+                p->q0[k] = -p->q0[k];
+    }
+    p->t = t;
+    p->last = last;
+}
+
+void fw_traj_start(fw_traj *t, const fw_limits *lim, const tse_real pose[6], const tse_real q[6])
+{
+    t->head = 0;
+    t->count = 0;
+    t->closed = false;
+    make_point(&t->prev, pose, TSE_R(0.0), false, 0);
+    t->tail = t->prev;
+    fw_slide_check_start(&t->chk, lim->slide_vmax, lim->slide_amax, lim->segment_hz, q);
+    t->next_segment = 1;
+}
+
+static void interpolate(const fw_traj_point *a, const fw_traj_point *b, tse_real tau, tse_real pose[6])
+{
+    const tse_real span = b->t - a->t;
+    tse_real u = span > TSE_R(0.0) ? (tau - a->t) / span : TSE_R(1.0);
+    if (u < TSE_R(0.0))
+        u = TSE_R(0.0);
+    if (u >= TSE_R(1.0)) {
+        for (int k = 0; k < 6; ++k)
+            pose[k] = b->pose[k];
+        return;
+    }
+    for (int k = 0; k < 3; ++k)
+        pose[k] = a->pose[k] + u * (b->pose[k] - a->pose[k]);
+    tse_real q[4];
+    fw_quat_slerp(a->q0, b->q0, u, q);
+    fw_quat_to_rpy(q, &pose[3]);
+}
+
+int fw_traj_push(fw_traj *t, const tse_geometry *g, const fw_limits *lim, const tse_real pose[6],
+                 tse_real dt, bool last, fw_plan_result *res)
+{
+    res->reason = FW_REASON_NONE;
+    res->status = TSE_OK;
+    res->scissor = 0;
+    res->segment = 0;
+    res->where = TSE_R(0.0);
+    if (t->closed) {
+        res->reason = FW_REASON_STATE;
+        return -1;
+    }
+    if (t->count >= FW_TRAJ_CAPACITY) {
+        res->reason = FW_REASON_QUEUE_FULL;
+        return -1;
+    }
+    for (int k = 0; k < 6; ++k) {
+        if (!isfinite(pose[k])) {
+            res->reason = FW_REASON_RANGE;
+            return -1;
+        }
+    }
+    if (!(dt > TSE_R(0.0))) {
+        res->reason = FW_REASON_RANGE;
+        return -1;
+    }
+    fw_traj_point p;
+    make_point(&p, pose, t->tail.t + dt, last, t->tail.q0);
+
+    /* Validate on a scratch copy of the running state: a refused point changes nothing. */
+    fw_slide_check chk = t->chk;
+    const tse_real period = TSE_R(1.0) / lim->segment_hz;
+    uint32_t k = t->next_segment;
+    tse_real t_prev = (tse_real)(k - 1u) * period;
+    for (;; ++k) {
+        tse_real tau = (tse_real)k * period;
+        if (tau > p.t) {
+            /* The last point itself is sampled too, so that the trajectory ends exactly on it. */
+            if (!last || t_prev >= p.t)
+                break;
+            tau = p.t;
+        }
+        tse_real sample[6];
+        interpolate(&t->tail, &p, tau, sample);
+        tse_ik_result r;
+        if (tse_ik(g, sample, chk.q, &r) != TSE_OK) {
+            res->reason = FW_REASON_KINEMATICS;
+            res->status = r.status;
+            res->scissor = r.scissor;
+            res->segment = k;
+            res->where = (tau - t->tail.t) / dt;
+            return -1;
+        }
+        fw_slide_check_feed(&chk, r.q, tau - t_prev);
+        t_prev = tau;
+        if (tau >= p.t)
+            break;
+    }
+    if (last)
+        fw_slide_check_finish(&chk);
+    if (chk.v_ratio > TSE_R(1.0) || chk.a_ratio > TSE_R(1.0)) {
+        res->reason = FW_REASON_TIMING;
+        return -1;
+    }
+
+    t->chk = chk;
+    t->next_segment = k + (last ? 1u : 0u);
+    t->pts[(t->head + t->count) % FW_TRAJ_CAPACITY] = p;
+    ++t->count;
+    t->tail = p;
+    t->closed = last;
+    return 0;
+}
+
+bool fw_traj_pose(fw_traj *t, tse_real tau, tse_real pose[6])
+{
+    /* A point reached becomes the start of the piece after it. */
+    while (t->count > 0 && tau >= t->pts[t->head].t) {
+        t->prev = t->pts[t->head];
+        t->head = (t->head + 1u) % FW_TRAJ_CAPACITY;
+        --t->count;
+    }
+    if (t->count == 0) {
+        for (int k = 0; k < 6; ++k)
+            pose[k] = t->prev.pose[k];
+        return tau <= t->prev.t;
+    }
+    interpolate(&t->prev, &t->pts[t->head], tau, pose);
+    return true;
+}
+
+tse_real fw_traj_end(const fw_traj *t)
+{
+    return t->tail.t;
+}

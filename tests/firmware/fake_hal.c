@@ -1,0 +1,134 @@
+#include "fake_hal.h"
+
+#include <string.h>
+
+static int can_send(void *ctx, const hal_can_frame *fr)
+{
+    fake_hal *f = ctx;
+    if (f->tx_count >= FAKE_QUEUE)
+        return -1;
+    f->tx[f->tx_count++] = *fr;
+    return 0;
+}
+
+static int can_receive(void *ctx, hal_can_frame *fr)
+{
+    fake_hal *f = ctx;
+    if (f->rx_count == 0)
+        return 0;
+    *fr = f->rx[f->rx_head];
+    f->rx_head = (f->rx_head + 1u) % FAKE_QUEUE;
+    --f->rx_count;
+    return 1;
+}
+
+static void can_state(void *ctx, hal_can_state *st)
+{
+    *st = ((fake_hal *)ctx)->can_state;
+}
+
+static void set_dir(void *ctx, uint8_t mask)
+{
+    ((fake_hal *)ctx)->forward_mask = mask;
+}
+
+static void pulse(void *ctx, uint8_t mask)
+{
+    fake_hal *f = ctx;
+    for (int k = 0; k < 6; ++k) {
+        if ((mask >> k) & 1u) {
+            f->steps[k] += ((f->forward_mask >> k) & 1u) ? 1 : -1;
+            ++f->pulses;
+        }
+    }
+}
+
+static void enable(void *ctx, bool on)
+{
+    ((fake_hal *)ctx)->enabled = on;
+}
+
+static uint16_t limits(void *ctx)
+{
+    fake_hal *f = ctx;
+    uint16_t m = f->forced_limits;
+    for (int k = 0; k < 6; ++k)
+        if (f->steps[k] <= f->switch_at)
+            m |= (uint16_t)(1u << k);
+    return m;
+}
+
+static bool estop(void *ctx)
+{
+    return ((fake_hal *)ctx)->estop_open;
+}
+
+static uint64_t now(void *ctx)
+{
+    return ((fake_hal *)ctx)->now_us;
+}
+
+static int load(void *ctx, void *buf, size_t cap)
+{
+    fake_hal *f = ctx;
+    if (f->storage_len <= 0 || (size_t)f->storage_len > cap)
+        return 0;
+    memcpy(buf, f->storage, (size_t)f->storage_len);
+    return f->storage_len;
+}
+
+static int save(void *ctx, const void *buf, size_t len)
+{
+    fake_hal *f = ctx;
+    if (f->storage_fails || len > sizeof f->storage)
+        return -1;
+    memcpy(f->storage, buf, len);
+    f->storage_len = (int)len;
+    return 0;
+}
+
+void fake_hal_init(fake_hal *f, fw_hal *hal)
+{
+    memset(f, 0, sizeof *f);
+    f->switch_at = 0;
+    for (int k = 0; k < 6; ++k)
+        f->steps[k] = 250000 + 1000 * k; /* somewhere mid-stroke at power-up */
+    hal->can = (hal_can){f, can_send, can_receive, can_state};
+    hal->stepper = (hal_stepper){f, set_dir, pulse, enable};
+    hal->inputs = (hal_inputs){f, limits, estop};
+    hal->clock = (hal_clock){f, now};
+    hal->storage = (hal_storage){f, load, save};
+}
+
+void fake_send(fake_hal *f, uint16_t id, uint8_t len, const uint8_t *data)
+{
+    hal_can_frame fr;
+    memset(&fr, 0, sizeof fr);
+    fr.id = id;
+    fr.len = len;
+    if (len)
+        memcpy(fr.data, data, len > 8 ? 8 : len);
+    f->rx[(f->rx_head + f->rx_count) % FAKE_QUEUE] = fr;
+    ++f->rx_count;
+}
+
+void fake_run(fake_hal *f, fw_controller *c, uint32_t ms)
+{
+    const uint32_t ticks = c->cfg.step_hz / c->cfg.segment_hz;
+    const uint32_t per_ms = c->cfg.segment_hz / 1000u;
+    for (uint32_t m = 0; m < ms * per_ms; ++m) {
+        fw_poll(c);
+        fw_control_tick(c);
+        for (uint32_t t = 0; t < ticks; ++t)
+            fw_step_tick(c);
+        f->now_us += 1000000u / c->cfg.segment_hz;
+    }
+}
+
+const hal_can_frame *fake_last(const fake_hal *f, uint8_t function, unsigned from)
+{
+    for (unsigned i = f->tx_count; i > from; --i)
+        if ((f->tx[i - 1].id >> 4) == function)
+            return &f->tx[i - 1];
+    return NULL;
+}
