@@ -164,8 +164,7 @@ static void traj_commit(fw_controller *c, const proto_message *m, uint8_t functi
     if (c->state == FW_STATE_IDLE)
         fw_traj_start(&c->traj, &c->lim, c->pose, c->q);
     fw_plan_result why;
-    const tse_real dt = (tse_real)m->v[1] * TSE_R(1e-6);
-    if (fw_traj_push(&c->traj, &c->geom, &c->lim, to, dt, (m->v[2] & 1) != 0, &why) != 0) {
+    if (fw_traj_push(&c->traj, &c->geom, &c->lim, to, (uint32_t)m->v[1], (m->v[2] & 1) != 0, &why) != 0) {
         fw_reject(c, function, seq, why.reason, 0, &why);
         if (why.reason != FW_REASON_QUEUE_FULL)
             accept_commit(c, seq); /* spent, as for moves; a full queue may be retried */

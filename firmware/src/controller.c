@@ -70,8 +70,9 @@ int fw_apply_params(fw_controller *c, const fw_param_set *s)
 int fw_init(fw_controller *c, const fw_hal *hal, const fw_config *cfg)
 {
     memset(c, 0, sizeof *c);
+    /* Trajectory time is kept in whole microseconds: the segment period must be one. */
     if (cfg->node == 0 || cfg->node > PROTO_NODE_MASK || cfg->segment_hz == 0 ||
-        cfg->step_hz % cfg->segment_hz != 0)
+        1000000u % cfg->segment_hz != 0 || cfg->step_hz % cfg->segment_hz != 0)
         return -1;
     c->hal = *hal;
     c->cfg = *cfg;
@@ -229,11 +230,21 @@ static void run_source(fw_controller *c)
     if (c->src == FW_SRC_MOVE)
         end = c->move.prof.T;
     else
-        end = c->traj.closed ? fw_traj_end(&c->traj) : (tse_real)INFINITY;
+        end = c->traj.closed ? (tse_real)fw_traj_end_us(&c->traj) * TSE_R(1e-6) : (tse_real)INFINITY;
+    const uint32_t grid = c->segments_run + 1u;
     const tse_real tau = advance(c, end, &last);
     tse_real pose[6];
-    const bool inside = c->src == FW_SRC_MOVE ? (fw_move_pose(&c->move, tau, pose), true)
-                                               : fw_traj_pose(&c->traj, tau, pose);
+    bool inside = true;
+    if (c->src == FW_SRC_MOVE) {
+        fw_move_pose(&c->move, tau, pose);
+    } else {
+        /* On the grid the time is exact in microseconds, as validation sampled it. */
+        uint64_t tau_us = c->stopping ? (uint64_t)(tau * TSE_R(1e6) + TSE_R(0.5))
+                                      : (uint64_t)grid * (1000000u / c->cfg.segment_hz);
+        if (last && c->traj.closed)
+            tau_us = fw_traj_end_us(&c->traj);
+        inside = fw_traj_pose(&c->traj, tau_us, pose);
+    }
     if (!inside) {
         /* The stream ran dry before its last point: hold its newest point, and fault. */
         last = true;

@@ -2,7 +2,7 @@
 
 #include "fw/quat.h"
 
-static void make_point(fw_traj_point *p, const tse_real pose[6], tse_real t, bool last,
+static void make_point(fw_traj_point *p, const tse_real pose[6], uint64_t t_us, bool last,
                        const tse_real near_q[4])
 {
     for (int k = 0; k < 6; ++k)
@@ -16,7 +16,7 @@ static void make_point(fw_traj_point *p, const tse_real pose[6], tse_real t, boo
             for (int k = 0; k < 4; ++k)
                 p->q0[k] = -p->q0[k];
     }
-    p->t = t;
+    p->t_us = t_us;
     p->last = last;
 }
 
@@ -25,23 +25,21 @@ void fw_traj_start(fw_traj *t, const fw_limits *lim, const tse_real pose[6], con
     t->head = 0;
     t->count = 0;
     t->closed = false;
-    make_point(&t->prev, pose, TSE_R(0.0), false, 0);
+    make_point(&t->prev, pose, 0u, false, 0);
     t->tail = t->prev;
     fw_slide_check_start(&t->chk, lim->slide_vmax, lim->slide_amax, lim->segment_hz, q);
     t->next_segment = 1;
 }
 
-static void interpolate(const fw_traj_point *a, const fw_traj_point *b, tse_real tau, tse_real pose[6])
+static void interpolate(const fw_traj_point *a, const fw_traj_point *b, uint64_t tau_us, tse_real pose[6])
 {
-    const tse_real span = b->t - a->t;
-    tse_real u = span > TSE_R(0.0) ? (tau - a->t) / span : TSE_R(1.0);
-    if (u < TSE_R(0.0))
-        u = TSE_R(0.0);
-    if (u >= TSE_R(1.0)) {
+    if (tau_us >= b->t_us) {
         for (int k = 0; k < 6; ++k)
             pose[k] = b->pose[k];
         return;
     }
+    const tse_real u = tau_us <= a->t_us ? TSE_R(0.0)
+                                         : (tse_real)(tau_us - a->t_us) / (tse_real)(b->t_us - a->t_us);
     for (int k = 0; k < 3; ++k)
         pose[k] = a->pose[k] + u * (b->pose[k] - a->pose[k]);
     tse_real q[4];
@@ -50,7 +48,7 @@ static void interpolate(const fw_traj_point *a, const fw_traj_point *b, tse_real
 }
 
 int fw_traj_push(fw_traj *t, const tse_geometry *g, const fw_limits *lim, const tse_real pose[6],
-                 tse_real dt, bool last, fw_plan_result *res)
+                 uint32_t dt_us, bool last, fw_plan_result *res)
 {
     res->reason = FW_REASON_NONE;
     res->status = TSE_OK;
@@ -71,25 +69,27 @@ int fw_traj_push(fw_traj *t, const tse_geometry *g, const fw_limits *lim, const 
             return -1;
         }
     }
-    if (!(dt > TSE_R(0.0))) {
+    const uint64_t period_us = (uint64_t)(TSE_R(1e6) / lim->segment_hz + TSE_R(0.5));
+    if (dt_us == 0 || period_us == 0) {
         res->reason = FW_REASON_RANGE;
         return -1;
     }
     fw_traj_point p;
-    make_point(&p, pose, t->tail.t + dt, last, t->tail.q0);
+    make_point(&p, pose, t->tail.t_us + dt_us, last, t->tail.q0);
 
     /* Validate on a scratch copy of the running state: a refused point changes nothing. */
     fw_slide_check chk = t->chk;
-    const tse_real period = TSE_R(1.0) / lim->segment_hz;
+    /* The grid is k segment periods from the start, in whole microseconds like the points. */
     uint32_t k = t->next_segment;
-    tse_real t_prev = (tse_real)(k - 1u) * period;
+    uint64_t t_prev = (uint64_t)(k - 1u) * period_us;
     for (;; ++k) {
-        tse_real tau = (tse_real)k * period;
-        if (tau > p.t) {
-            /* The last point itself is sampled too, so that the trajectory ends exactly on it. */
-            if (!last || t_prev >= p.t)
-                break;
-            tau = p.t;
+        uint64_t tau = (uint64_t)k * period_us;
+        bool at_point = false;
+        if (tau >= p.t_us) {
+            if (tau > p.t_us && !last)
+                break; /* this grid time belongs to the piece after the new point */
+            tau = p.t_us; /* the trajectory ends exactly on its last point */
+            at_point = true;
         }
         tse_real sample[6];
         interpolate(&t->tail, &p, tau, sample);
@@ -99,13 +99,15 @@ int fw_traj_push(fw_traj *t, const tse_geometry *g, const fw_limits *lim, const 
             res->status = r.status;
             res->scissor = r.scissor;
             res->segment = k;
-            res->where = (tau - t->tail.t) / dt;
+            res->where = (tse_real)(tau - t->tail.t_us) / (tse_real)dt_us;
             return -1;
         }
-        fw_slide_check_feed(&chk, r.q, tau - t_prev);
+        fw_slide_check_feed(&chk, r.q, (tse_real)(tau - t_prev) * TSE_R(1e-6));
         t_prev = tau;
-        if (tau >= p.t)
+        if (at_point) {
+            ++k;
             break;
+        }
     }
     if (last)
         fw_slide_check_finish(&chk);
@@ -115,7 +117,7 @@ int fw_traj_push(fw_traj *t, const tse_geometry *g, const fw_limits *lim, const 
     }
 
     t->chk = chk;
-    t->next_segment = k + (last ? 1u : 0u);
+    t->next_segment = k;
     t->pts[(t->head + t->count) % FW_TRAJ_CAPACITY] = p;
     ++t->count;
     t->tail = p;
@@ -123,10 +125,10 @@ int fw_traj_push(fw_traj *t, const tse_geometry *g, const fw_limits *lim, const 
     return 0;
 }
 
-bool fw_traj_pose(fw_traj *t, tse_real tau, tse_real pose[6])
+bool fw_traj_pose(fw_traj *t, uint64_t tau_us, tse_real pose[6])
 {
     /* A point reached becomes the start of the piece after it. */
-    while (t->count > 0 && tau >= t->pts[t->head].t) {
+    while (t->count > 0 && tau_us >= t->pts[t->head].t_us) {
         t->prev = t->pts[t->head];
         t->head = (t->head + 1u) % FW_TRAJ_CAPACITY;
         --t->count;
@@ -134,13 +136,13 @@ bool fw_traj_pose(fw_traj *t, tse_real tau, tse_real pose[6])
     if (t->count == 0) {
         for (int k = 0; k < 6; ++k)
             pose[k] = t->prev.pose[k];
-        return tau <= t->prev.t;
+        return tau_us <= t->prev.t_us;
     }
-    interpolate(&t->prev, &t->pts[t->head], tau, pose);
+    interpolate(&t->prev, &t->pts[t->head], tau_us, pose);
     return true;
 }
 
-tse_real fw_traj_end(const fw_traj *t)
+uint64_t fw_traj_end_us(const fw_traj *t)
 {
-    return t->tail.t;
+    return t->tail.t_us;
 }

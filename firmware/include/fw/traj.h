@@ -20,7 +20,8 @@
 typedef struct {
     tse_real pose[6];
     tse_real q0[4];   /* its orientation as a quaternion (hemisphere continuous along the queue) */
-    tse_real t;       /* path time of the point [s] */
+    uint64_t t_us;    /* path time of the point: integer microseconds, so that comparisons with
+                       * the segment grid are exact */
     bool last;
 } fw_traj_point;
 
@@ -38,18 +39,18 @@ typedef struct {
 /* Begins an empty trajectory at the current pose and slides, path time 0. */
 void fw_traj_start(fw_traj *t, const fw_limits *lim, const tse_real pose[6], const tse_real q[6]);
 
-/* Validates and appends a point dt seconds after the newest one.  Returns 0, or -1 with the
+/* Validates and appends a point dt_us microseconds after the newest one.  Returns 0, or -1 with the
  * reason in *res (FW_REASON_QUEUE_FULL, FW_REASON_STATE after the last point,
  * FW_REASON_KINEMATICS with the first failing sample, FW_REASON_TIMING); nothing is changed then. */
 int fw_traj_push(fw_traj *t, const tse_geometry *g, const fw_limits *lim, const tse_real pose[6],
-                 tse_real dt, bool last, fw_plan_result *res);
+                 uint32_t dt_us, bool last, fw_plan_result *res);
 
-/* Pose at path time tau; points wholly behind tau leave the queue.  Returns false when tau is
- * past the newest point (the pose is then that point's). */
-bool fw_traj_pose(fw_traj *t, tse_real tau, tse_real pose[6]);
+/* Pose at path time tau_us; points reached leave the queue.  Returns false when tau_us is past
+ * the newest point (the pose is then that point's). */
+bool fw_traj_pose(fw_traj *t, uint64_t tau_us, tse_real pose[6]);
 
-/* Path time of the newest point. */
-tse_real fw_traj_end(const fw_traj *t);
+/* Path time of the newest point [us]. */
+uint64_t fw_traj_end_us(const fw_traj *t);
 
 static inline unsigned fw_traj_depth(const fw_traj *t) { return t->count; }
 static inline unsigned fw_traj_free(const fw_traj *t) { return FW_TRAJ_CAPACITY - t->count; }

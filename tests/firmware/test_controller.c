@@ -1,0 +1,537 @@
+/* The controller through its CAN interface, on the fake HAL: every command in every state,
+ * atomic staging, malformed frames, watchdog, e-stop, limit and bus-off faults, parameters. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "fake_hal.h"
+#include "fw/controller_internal.h"
+
+static fake_hal F;
+static fw_controller C;
+static uint8_t seq;
+
+static void start(void)
+{
+    fw_hal hal;
+    fake_hal_init(&F, &hal);
+    for (int k = 0; k < 6; ++k)
+        F.steps[k] = 3000 + 100 * k; /* near the switches: homing is short */
+    const fw_config cfg = {1, 1000, 100000};
+    assert_int_equal(fw_init(&C, &hal, &cfg), 0);
+    seq = 1;
+}
+
+static void send(proto_msg m, const int32_t *v)
+{
+    proto_message pm;
+    pm.msg = m;
+    pm.node = 1;
+    for (int i = 0; i < proto_table[m].nfields; ++i)
+        pm.v[i] = v[i];
+    hal_can_frame f;
+    assert_int_equal(proto_encode(&pm, &f), 0);
+    fake_send(&F, f.id, f.len, f.data);
+}
+
+static void cmd(proto_msg m)
+{
+    const int32_t v[1] = {seq++};
+    send(m, v);
+}
+
+static void heartbeat(void)
+{
+    const int32_t v[1] = {0};
+    send(PM_HOST_HEARTBEAT, v);
+}
+
+/* Runs ms milliseconds with the host alive. */
+static void run(uint32_t ms)
+{
+    for (uint32_t t = 0; t < ms; t += 10) {
+        heartbeat();
+        fake_run(&F, &C, 10);
+    }
+}
+
+static void stage(uint8_t s, const double p[6])
+{
+    const int32_t a[3] = {s, (int32_t)lround(p[0] * 1e6), (int32_t)lround(p[1] * 1e6)};
+    const int32_t b[3] = {s, (int32_t)lround(p[2] * 1e6), (int32_t)lround(p[3] * 1e6)};
+    const int32_t c[3] = {s, (int32_t)lround(p[4] * 1e6), (int32_t)lround(p[5] * 1e6)};
+    send(PM_POSE_A, a);
+    send(PM_POSE_B, b);
+    send(PM_POSE_C, c);
+}
+
+static void move_to(const double p[6], int32_t ms)
+{
+    const uint8_t s = seq++;
+    stage(s, p);
+    const int32_t m[3] = {s, 0, ms};
+    send(PM_MOVE_COMMIT, m);
+}
+
+/* What the controller answered since tx index `from`: 'a' ack, 'r' reject, 0 nothing. */
+static char answer(unsigned from, uint8_t function, uint8_t *reason)
+{
+    for (unsigned i = from; i < F.tx_count; ++i) {
+        const hal_can_frame *f = &F.tx[i];
+        if ((f->id >> 4) == 0x04 && f->data[0] == function)
+            return 'a';
+        if ((f->id >> 4) == 0x03 && f->data[0] == function) {
+            if (reason)
+                *reason = f->data[2];
+            return 'r';
+        }
+    }
+    return 0;
+}
+
+static void home(void)
+{
+    cmd(PM_ENABLE);
+    run(20);
+    assert_int_equal(C.state, FW_STATE_IDLE);
+    cmd(PM_HOME);
+    run(100);
+    assert_int_equal(C.state, FW_STATE_HOMING);
+    for (int i = 0; i < 200 && C.state == FW_STATE_HOMING; ++i)
+        run(100);
+    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_true(C.homed);
+}
+
+static const double NEAR[6] = {0.05, 0.0, 1.0, 0, 0, 0};
+
+static void reach(fw_state s)
+{
+    start();
+    switch (s) {
+    case FW_STATE_DISABLED:
+        break;
+    case FW_STATE_HOMING:
+        cmd(PM_ENABLE);
+        run(20);
+        cmd(PM_HOME);
+        run(50);
+        break;
+    case FW_STATE_IDLE:
+        home();
+        break;
+    case FW_STATE_MOVING:
+        home();
+        move_to(NEAR, 3000);
+        run(100);
+        break;
+    case FW_STATE_STOPPING:
+        home();
+        move_to(NEAR, 3000);
+        run(1000);
+        cmd(PM_STOP);
+        fw_poll(&C);
+        break;
+    case FW_STATE_FAULT:
+        cmd(PM_ENABLE);
+        run(20);
+        fake_run(&F, &C, 700); /* no heartbeat past the 500 ms watchdog */
+        break;
+    case FW_STATE_ESTOP:
+        cmd(PM_ESTOP);
+        run(20);
+        break;
+    default:
+        fail();
+    }
+    assert_int_equal(C.state, s);
+}
+
+/* Every command in every state, against the rules of system.md written out here. */
+static void test_state_table(void **state)
+{
+    (void)state;
+    const fw_state states[] = {FW_STATE_DISABLED, FW_STATE_HOMING, FW_STATE_IDLE, FW_STATE_MOVING,
+                               FW_STATE_STOPPING, FW_STATE_FAULT, FW_STATE_ESTOP};
+    /* 'a' ack, 'r' reject (state), '-' no answer.  Order of states as above. */
+    const struct {
+        proto_msg cmd;
+        const char *expect;
+    } rows[] = {
+        {PM_ESTOP, "aaaaaaa"},       {PM_STOP, "aaaaaaa"},        {PM_HOST_HEARTBEAT, "-------"},
+        {PM_ENABLE, "arrrrrr"},      {PM_DISABLE, "ararraa"},     {PM_HOME, "rrarrrr"},
+        {PM_CLEAR_FAULT, "rrrrraa"}, {PM_POSE_A, "-------"},      {PM_MOVE_COMMIT, "rrarrrr"},
+        {PM_TRAJ_COMMIT, "rrarrrr"}, {PM_PARAM_GET, "aaaaaaa"},   {PM_PARAM_SET, "arrrraa"},
+        {PM_PARAM_SAVE, "arrrraa"},
+    };
+    for (size_t r = 0; r < sizeof rows / sizeof rows[0]; ++r) {
+        for (size_t k = 0; k < sizeof states / sizeof states[0]; ++k) {
+            const char want = rows[r].expect[k];
+            reach(states[k]);
+            const unsigned from = F.tx_count;
+            const uint8_t s = seq++;
+            switch (rows[r].cmd) {
+            case PM_MOVE_COMMIT: {
+                stage(s, NEAR);
+                const int32_t v[3] = {s, 0, 2000};
+                send(PM_MOVE_COMMIT, v);
+                break;
+            }
+            case PM_TRAJ_COMMIT: {
+                stage(s, C.pose_known ? C.pose : NEAR);
+                const int32_t v[3] = {s, 50000, 1};
+                send(PM_TRAJ_COMMIT, v);
+                break;
+            }
+            case PM_PARAM_GET: {
+                const int32_t v[1] = {FP_WATCHDOG_MS};
+                send(PM_PARAM_GET, v);
+                break;
+            }
+            case PM_PARAM_SET: {
+                const int32_t v[2] = {FP_WATCHDOG_MS, 400};
+                send(PM_PARAM_SET, v);
+                break;
+            }
+            case PM_PARAM_SAVE: {
+                const int32_t v[1] = {0x45564153};
+                send(PM_PARAM_SAVE, v);
+                break;
+            }
+            case PM_POSE_A: {
+                const int32_t v[3] = {s, 0, 0};
+                send(PM_POSE_A, v);
+                break;
+            }
+            default: {
+                const int32_t v[1] = {s};
+                send(rows[r].cmd, v);
+            }
+            }
+            fw_poll(&C);
+            uint8_t reason = 0;
+            const char got = answer(from, proto_table[rows[r].cmd].function, &reason);
+            if ((want == '-' ? 0 : want) != got)
+                fail_msg("%s in state %d: expected %c, got %c", proto_table[rows[r].cmd].name, states[k], want,
+                         got ? got : '-');
+            if (got == 'r')
+                assert_int_equal(reason, FW_REASON_STATE);
+        }
+    }
+    /* Boot accepts nothing but e-stop and parameter reads. */
+    for (int m = 0; m < PM_COUNT; ++m) {
+        if (proto_table[m].dir != PROTO_TO_CONTROLLER)
+            continue;
+        const fw_reason r = fw_command_allowed((proto_msg)m, FW_STATE_BOOT);
+        const int ok = m == PM_ESTOP || m == PM_HOST_HEARTBEAT || m == PM_PARAM_GET;
+        assert_int_equal(r == FW_REASON_NONE, ok);
+    }
+}
+
+static void test_move_lands_on_target_steps(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    const double target[6] = {0.1, -0.05, 1.1, 0.1, -0.05, 0.2};
+    const unsigned from = F.tx_count;
+    move_to(target, 1000);
+    run(50);
+    assert_int_equal(answer(from, 0x0D, NULL), 'a');
+    for (int i = 0; i < 100 && C.state != FW_STATE_IDLE; ++i)
+        run(100);
+    assert_int_equal(C.state, FW_STATE_IDLE);
+    /* The slides sit on the target's solution, to the step, counted from the switch edge (the
+     * zero is the first step off the switch). */
+    tse_ik_result r;
+    const double wire[6] = {0.1, -0.05, 1.1, 0.1, -0.05, 0.2};
+    assert_int_equal(tse_ik(&C.geom, wire, NULL, &r), TSE_OK);
+    for (int k = 0; k < 6; ++k) {
+        const long want = lround(r.q[k] * 640000.0);
+        assert_int_equal(F.steps[k] - F.switch_at - 1, want);
+    }
+}
+
+static void test_staging_is_atomic(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    const double target[6] = {0.05, 0.02, 1.05, 0, 0, 0.1};
+    uint8_t reason = 0;
+
+    /* Two parts only. */
+    uint8_t s = seq++;
+    const int32_t a[3] = {s, 50000, 20000}, b[3] = {s, 1050000, 0};
+    send(PM_POSE_A, a);
+    send(PM_POSE_B, b);
+    const int32_t m[3] = {s, 0, 1000};
+    unsigned from = F.tx_count;
+    send(PM_MOVE_COMMIT, m);
+    fw_poll(&C);
+    assert_int_equal(answer(from, 0x0D, &reason), 'r');
+    assert_int_equal(reason, FW_REASON_INCOMPLETE);
+    assert_int_equal(C.state, FW_STATE_IDLE);
+
+    /* Parts of a different sequence do not complete it. */
+    const int32_t c_other[3] = {(uint8_t)(s + 1), 0, 100000};
+    send(PM_POSE_C, c_other);
+    from = F.tx_count;
+    send(PM_MOVE_COMMIT, m);
+    fw_poll(&C);
+    assert_int_equal(answer(from, 0x0D, &reason), 'r');
+    assert_int_equal(reason, FW_REASON_INCOMPLETE);
+
+    /* Out of order is fine: C, A, B of one sequence. */
+    s = (uint8_t)(s + 1);
+    seq = (uint8_t)(s + 1);
+    const int32_t c2[3] = {s, 0, 100000}, a2[3] = {s, 50000, 20000}, b2[3] = {s, 1050000, 0};
+    send(PM_POSE_C, c2);
+    send(PM_POSE_A, a2);
+    send(PM_POSE_B, b2);
+    /* A late part of the older sequence must not displace it. */
+    const int32_t late[3] = {(uint8_t)(s - 1), 0, 0};
+    from = F.tx_count;
+    send(PM_POSE_A, late);
+    fw_poll(&C);
+    assert_int_equal(answer(from, 0x0A, &reason), 'r');
+    assert_int_equal(reason, FW_REASON_STALE);
+    const int32_t m2[3] = {s, 0, 1000};
+    from = F.tx_count;
+    send(PM_MOVE_COMMIT, m2);
+    fw_poll(&C);
+    assert_int_equal(answer(from, 0x0D, NULL), 'a');
+    assert_int_equal(C.state, FW_STATE_MOVING);
+    for (int k = 0; k < 6; ++k)
+        assert_true(fabs(C.move.to[k] - target[k]) < 1e-12);
+
+    /* The same sequence again is stale. */
+    for (int i = 0; i < 50 && C.state != FW_STATE_IDLE; ++i)
+        run(100);
+    stage(s, target);
+    from = F.tx_count;
+    send(PM_MOVE_COMMIT, m2);
+    fw_poll(&C);
+    assert_int_equal(answer(from, 0x0D, &reason), 'r');
+    assert_int_equal(reason, FW_REASON_STALE);
+}
+
+static void test_unreachable_pose_rejected_without_motion(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    const uint64_t pulses = F.pulses;
+    const double away[6] = {0.8, 0, 1.0, 0, 0, 0};
+    const unsigned from = F.tx_count;
+    move_to(away, 1000);
+    run(100);
+    const hal_can_frame *r = fake_last(&F, 0x03, from);
+    assert_non_null(r);
+    assert_int_equal(r->data[0], 0x0D);
+    assert_int_equal(r->data[2], FW_REASON_KINEMATICS);
+    assert_true(r->data[3] >= 1 && r->data[3] <= 3);
+    assert_int_not_equal(r->data[4], TSE_OK);
+    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_true(F.pulses == pulses);
+}
+
+/* Malformed frames are refused with their reason and change nothing. */
+static void test_malformed_frames(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    const fw_state st = C.state;
+    const fw_param_set params = C.params;
+    struct {
+        uint16_t id;
+        uint8_t len;
+        uint8_t data[8];
+        uint8_t reason;
+    } cases[] = {
+        {0x061, 2, {1, 2}, FW_REASON_BAD_LENGTH},                  /* ENABLE with 2 bytes */
+        {0x7F1, 1, {1}, FW_REASON_UNKNOWN},                        /* no such function */
+        {0x0D1, 6, {9, 7, 0xE8, 3, 0, 0}, FW_REASON_RANGE},         /* MOVE_COMMIT kind 7 */
+        {0x0A1, 7, {9, 0xFF, 0xFF, 0x7F, 0, 0, 0}, FW_REASON_RANGE}, /* x = 8.4 m */
+        {0x111, 4, {1, 2, 3, 4}, FW_REASON_RANGE},                 /* PARAM_SAVE without magic */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        const unsigned from = F.tx_count;
+        fake_send(&F, cases[i].id, cases[i].len, cases[i].data);
+        fw_poll(&C);
+        uint8_t reason = 0;
+        assert_int_equal(answer(from, (uint8_t)(cases[i].id >> 4), &reason), 'r');
+        assert_int_equal(reason, cases[i].reason);
+        assert_int_equal(C.state, st);
+        assert_memory_equal(&C.params, &params, sizeof params);
+        assert_int_equal(C.stage_have, 0);
+    }
+    /* Other nodes' frames and the controllers' own traffic are ignored. */
+    const unsigned from = F.tx_count;
+    const uint8_t d[1] = {5};
+    fake_send(&F, 0x072, 1, d);           /* DISABLE for node 2 */
+    fake_send(&F, 0x201, 8, (uint8_t[8]){0}); /* a STATUS frame */
+    fake_send(&F, 0x060, 1, d);           /* ENABLE broadcast: only stops are broadcast */
+    fw_poll(&C);
+    assert_int_equal(F.tx_count, from + 0u);
+    assert_int_equal(C.state, FW_STATE_IDLE);
+}
+
+static void test_watchdog(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    fake_run(&F, &C, 450);
+    assert_int_equal(C.state, FW_STATE_IDLE); /* 500 ms not yet passed */
+    fake_run(&F, &C, 100);
+    assert_int_equal(C.state, FW_STATE_FAULT);
+    assert_int_equal(C.fault, FW_FAULT_WATCHDOG);
+    assert_false(F.enabled);
+    /* Latched until cleared; clearing leaves the drives off. */
+    run(200);
+    assert_int_equal(C.state, FW_STATE_FAULT);
+    cmd(PM_CLEAR_FAULT);
+    run(10);
+    assert_int_equal(C.state, FW_STATE_DISABLED);
+    assert_int_equal(C.fault, FW_FAULT_NONE);
+}
+
+/* Silence during a move: a controlled stop along the path, then the fault. */
+static void test_watchdog_during_move_stops_smoothly(void **state)
+{
+    (void)state;
+    reach(FW_STATE_MOVING);
+    run(1000);
+    fake_run(&F, &C, 520);
+    assert_int_equal(C.state, FW_STATE_STOPPING);
+    for (int i = 0; i < 100 && C.state == FW_STATE_STOPPING; ++i)
+        fake_run(&F, &C, 10);
+    assert_int_equal(C.state, FW_STATE_FAULT);
+    assert_int_equal(C.fault, FW_FAULT_WATCHDOG);
+    assert_true(C.homed); /* a controlled stop keeps the zero */
+}
+
+static void test_estop_cuts_within_a_tick(void **state)
+{
+    (void)state;
+    reach(FW_STATE_MOVING);
+    run(500);
+    const uint64_t before = F.pulses;
+    run(10);
+    assert_true(F.pulses > before); /* it was moving */
+    cmd(PM_ESTOP);
+    fake_run(&F, &C, 1); /* the poll at the start of this tick takes the e-stop */
+    const uint64_t at = F.pulses;
+    fake_run(&F, &C, 100);
+    assert_true(F.pulses == at);
+    assert_int_equal(C.state, FW_STATE_ESTOP);
+    assert_false(F.enabled);
+    assert_false(C.homed);
+    /* The input too, and clearing needs it closed. */
+    reach(FW_STATE_IDLE);
+    F.estop_open = true;
+    fake_run(&F, &C, 1);
+    assert_int_equal(C.state, FW_STATE_ESTOP);
+    uint8_t reason;
+    const unsigned from = F.tx_count;
+    cmd(PM_CLEAR_FAULT);
+    fw_poll(&C);
+    assert_int_equal(answer(from, 0x09, &reason), 'r');
+    F.estop_open = false;
+    cmd(PM_CLEAR_FAULT);
+    run(10);
+    assert_int_equal(C.state, FW_STATE_DISABLED);
+}
+
+static void test_limit_and_bus_off(void **state)
+{
+    (void)state;
+    reach(FW_STATE_MOVING);
+    F.forced_limits = 1u << 3;
+    run(500);
+    assert_int_equal(C.state, FW_STATE_FAULT);
+    assert_int_equal(C.fault, FW_FAULT_LIMIT);
+    assert_false(C.homed);
+    reach(FW_STATE_IDLE);
+    F.can_state.bus_off = true;
+    run(10);
+    assert_int_equal(C.fault, FW_FAULT_BUS_OFF);
+}
+
+static void test_params_over_can(void **state)
+{
+    (void)state;
+    start();
+    unsigned from = F.tx_count;
+    const int32_t set[2] = {FP_SLIDE_VMAX, 150000};
+    send(PM_PARAM_SET, set);
+    fw_poll(&C);
+    assert_int_equal(answer(from, 0x10, NULL), 'a');
+    const hal_can_frame *v = fake_last(&F, 0x27, from);
+    assert_non_null(v);
+    assert_int_equal(v->data[2] | v->data[3] << 8 | v->data[4] << 16, 150000);
+    /* A value that breaks the set changes nothing. */
+    from = F.tx_count;
+    const int32_t bad[2] = {FP_ALPHA_MIN, 1400000};
+    send(PM_PARAM_SET, bad);
+    fw_poll(&C);
+    uint8_t reason;
+    assert_int_equal(answer(from, 0x10, &reason), 'r');
+    assert_int_equal(reason, FW_REASON_PARAM_SET);
+    assert_int_equal(C.params.v[FP_ALPHA_MIN], fw_param_table[FP_ALPHA_MIN].def);
+    /* Saved, and found again at the next start. */
+    const int32_t magic[1] = {0x45564153};
+    send(PM_PARAM_SAVE, magic);
+    fw_poll(&C);
+    const uint8_t saved[256];
+    memcpy((void *)saved, F.storage, sizeof saved);
+    const int len = F.storage_len;
+    fw_hal hal;
+    fake_hal_init(&F, &hal);
+    memcpy(F.storage, saved, sizeof saved);
+    F.storage_len = len;
+    const fw_config cfg = {1, 1000, 100000};
+    assert_int_equal(fw_init(&C, &hal, &cfg), 0);
+    assert_int_equal(C.params.v[FP_SLIDE_VMAX], 150000);
+    /* A failing store is reported. */
+    F.storage_fails = true;
+    from = F.tx_count;
+    send(PM_PARAM_SAVE, magic);
+    fw_poll(&C);
+    assert_int_equal(answer(from, 0x11, &reason), 'r');
+    assert_int_equal(reason, FW_REASON_STORAGE);
+}
+
+static void test_status_period(void **state)
+{
+    (void)state;
+    start();
+    const unsigned from = F.tx_count;
+    run(1000);
+    unsigned n = 0;
+    for (unsigned i = from; i < F.tx_count; ++i)
+        if ((F.tx[i].id >> 4) == 0x20)
+            ++n;
+    assert_true(n >= 9 && n <= 11); /* every 100 ms */
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_state_table),
+        cmocka_unit_test(test_move_lands_on_target_steps),
+        cmocka_unit_test(test_staging_is_atomic),
+        cmocka_unit_test(test_unreachable_pose_rejected_without_motion),
+        cmocka_unit_test(test_malformed_frames),
+        cmocka_unit_test(test_watchdog),
+        cmocka_unit_test(test_watchdog_during_move_stops_smoothly),
+        cmocka_unit_test(test_estop_cuts_within_a_tick),
+        cmocka_unit_test(test_limit_and_bus_off),
+        cmocka_unit_test(test_params_over_can),
+        cmocka_unit_test(test_status_period),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

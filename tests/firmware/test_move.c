@@ -1,0 +1,181 @@
+/* Move planning: validated paths stay within every slide limit when sampled independently, the
+ * plate obeys the speed asked for, and a path that leaves the workspace mid-way is caught with
+ * its first failing point. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include <cmocka.h>
+
+#include "fw/move.h"
+
+static tse_geometry G;
+static const fw_limits LIM = {0.2, 1.0, 0.3, 1.0, 10.0, 0.5, 2.0, 1000.0};
+
+static int setup(void **state)
+{
+    (void)state;
+    tse_params p;
+    tse_params_default(&p);
+    return tse_geometry_init(&G, &p) == TSE_PARAM_OK ? 0 : -1;
+}
+
+static void solve(const double pose[6], const double *seed, double q[6])
+{
+    tse_ik_result r;
+    assert_int_equal(tse_ik(&G, pose, seed, &r), TSE_OK);
+    for (int k = 0; k < 6; ++k)
+        q[k] = r.q[k];
+}
+
+/* Samples the planned move at its segment grid and measures the slides by finite differences:
+ * speed per segment, acceleration as the change of speed over 10 segments (with rest before and
+ * after). */
+static void measure(const fw_move *mv, const double q0[6], double *vpeak, double *apeak, double *plate_v)
+{
+    enum { STRIDE = 10 };
+    const int n = (int)mv->segments;
+    double (*v)[6] = calloc((size_t)n + 2 * STRIDE, sizeof *v);
+    double q_prev[6], t_prev = 0.0, p_prev[6];
+    for (int k = 0; k < 6; ++k)
+        q_prev[k] = q0[k];
+    fw_move_pose(mv, 0.0, p_prev);
+    *vpeak = *apeak = *plate_v = 0.0;
+    for (int s = 1; s <= n; ++s) {
+        const double t = fw_move_segment_time(mv, &LIM, (uint32_t)s);
+        double pose[6], q[6];
+        fw_move_pose(mv, t, pose);
+        solve(pose, q_prev, q);
+        const double dt = t - t_prev;
+        const double dp = sqrt(pow(pose[0] - p_prev[0], 2) + pow(pose[1] - p_prev[1], 2) + pow(pose[2] - p_prev[2], 2));
+        if (dt > 0 && dp / dt > *plate_v)
+            *plate_v = dp / dt;
+        for (int k = 0; k < 6; ++k) {
+            v[STRIDE + s - 1][k] = dt > 0 ? (q[k] - q_prev[k]) / dt : 0.0;
+            if (fabs(v[STRIDE + s - 1][k]) > *vpeak)
+                *vpeak = fabs(v[STRIDE + s - 1][k]);
+            q_prev[k] = q[k];
+            p_prev[k] = pose[k];
+        }
+        t_prev = t;
+    }
+    for (int i = STRIDE; i < n + 2 * STRIDE; ++i)
+        for (int k = 0; k < 6; ++k) {
+            const double a = fabs(v[i][k] - v[i - STRIDE][k]) * LIM.segment_hz / STRIDE;
+            if (a > *apeak)
+                *apeak = a;
+        }
+    free(v);
+}
+
+static void test_reachable_move(void **state)
+{
+    (void)state;
+    const double from[6] = {0, 0, 1.0, 0, 0, 0}, to[6] = {0.1, -0.05, 1.3, 0.05, -0.05, 0.2};
+    double q0[6];
+    solve(from, NULL, q0);
+    fw_move mv;
+    fw_plan_result res;
+    assert_int_equal(fw_move_plan(&mv, &G, &LIM, from, to, FW_MOVE_DURATION, 0.5, q0, &res), 0);
+    assert_true(mv.prof.T >= 0.5);
+    assert_int_equal(mv.segments, (uint32_t)ceil(mv.prof.T * LIM.segment_hz));
+    double end[6];
+    fw_move_pose(&mv, mv.prof.T, end);
+    for (int k = 0; k < 6; ++k)
+        assert_true(end[k] == to[k]);
+    double vpeak, apeak, plate_v;
+    measure(&mv, q0, &vpeak, &apeak, &plate_v);
+    assert_true(vpeak <= LIM.slide_vmax);
+    assert_true(apeak <= LIM.slide_amax);
+    assert_true(plate_v <= LIM.plate_vmax * (1 + 1e-9));
+    /* Asked for 0.5 s, the slides needed more: the move was stretched until a limit binds. */
+    assert_true(mv.stretch > 1.0);
+    assert_true(vpeak > 0.8 * LIM.slide_vmax || apeak > 0.8 * LIM.slide_amax);
+}
+
+static void test_slow_move_keeps_duration(void **state)
+{
+    (void)state;
+    const double from[6] = {0, 0, 1.0, 0, 0, 0}, to[6] = {0.02, 0.01, 1.02, 0, 0, 0.01};
+    double q0[6];
+    solve(from, NULL, q0);
+    fw_move mv;
+    fw_plan_result res;
+    assert_int_equal(fw_move_plan(&mv, &G, &LIM, from, to, FW_MOVE_DURATION, 3.0, q0, &res), 0);
+    assert_true(fabs(mv.prof.T - 3.0) < 1e-9);
+    assert_true(mv.stretch == 1.0);
+}
+
+static void test_speed_mode(void **state)
+{
+    (void)state;
+    const double from[6] = {0, 0, 0.8, 0, 0, 0}, to[6] = {0.0, 0.0, 1.2, 0, 0, 0};
+    double q0[6];
+    solve(from, NULL, q0);
+    fw_move mv;
+    fw_plan_result res;
+    assert_int_equal(fw_move_plan(&mv, &G, &LIM, from, to, FW_MOVE_SPEED, 0.05, q0, &res), 0);
+    double vpeak, apeak, plate_v;
+    measure(&mv, q0, &vpeak, &apeak, &plate_v);
+    assert_true(plate_v <= 0.05 * (1 + 1e-9));
+    assert_true(plate_v >= 0.05 * 0.99); /* it cruises at the speed asked */
+    assert_true(mv.prof.T >= 0.4 / 0.05);
+}
+
+/* Both ends reachable; the middle is below the retracted height at the centre (alpha stop). */
+static void test_leaves_workspace_midway(void **state)
+{
+    (void)state;
+    const double from[6] = {-0.157, 0.202, 0.312, 0, 0, 0}, to[6] = {0.279, 0.057, 0.312, 0, 0, 0};
+    double q0[6], q1[6];
+    solve(from, NULL, q0);
+    solve(to, NULL, q1);
+    fw_move mv;
+    fw_plan_result res;
+    assert_int_equal(fw_move_plan(&mv, &G, &LIM, from, to, FW_MOVE_DURATION, 2.0, q0, &res), -1);
+    assert_int_equal(res.reason, FW_REASON_KINEMATICS);
+    assert_true(res.where > 0.0 && res.where < 1.0);
+    /* The named point fails, and the path just before it does not. */
+    double pose[6];
+    for (int k = 0; k < 6; ++k)
+        pose[k] = from[k] + res.where * (to[k] - from[k]);
+    tse_ik_result r;
+    assert_int_not_equal(tse_ik(&G, pose, NULL, &r), TSE_OK);
+    assert_int_equal(r.status, res.status);
+    assert_int_equal(r.scissor, res.scissor);
+    for (int k = 0; k < 6; ++k)
+        pose[k] = from[k] + (res.where - 0.01) * (to[k] - from[k]);
+    assert_int_equal(tse_ik(&G, pose, NULL, &r), TSE_OK);
+}
+
+static void test_unreachable_target_and_bad_input(void **state)
+{
+    (void)state;
+    const double from[6] = {0, 0, 1.0, 0, 0, 0}, to[6] = {0.8, 0, 1.0, 0, 0, 0};
+    double q0[6];
+    solve(from, NULL, q0);
+    fw_move mv;
+    fw_plan_result res;
+    assert_int_equal(fw_move_plan(&mv, &G, &LIM, from, to, FW_MOVE_DURATION, 1.0, q0, &res), -1);
+    assert_int_equal(res.reason, FW_REASON_KINEMATICS);
+    assert_true(res.scissor >= 1 && res.scissor <= 3);
+    const double nan_to[6] = {0, 0, NAN, 0, 0, 0};
+    assert_int_equal(fw_move_plan(&mv, &G, &LIM, from, nan_to, FW_MOVE_DURATION, 1.0, q0, &res), -1);
+    assert_int_equal(res.reason, FW_REASON_RANGE);
+    assert_int_equal(fw_move_plan(&mv, &G, &LIM, from, from, FW_MOVE_DURATION, 0.0, q0, &res), -1);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_reachable_move),
+        cmocka_unit_test(test_slow_move_keeps_duration),
+        cmocka_unit_test(test_speed_mode),
+        cmocka_unit_test(test_leaves_workspace_midway),
+        cmocka_unit_test(test_unreachable_target_and_bad_input),
+    };
+    return cmocka_run_group_tests(tests, setup, NULL);
+}
