@@ -28,6 +28,7 @@ typedef float tse_real;
 #define tse_atan2 atan2f
 #define tse_fabs fabsf
 #define tse_cbrt cbrtf
+#define tse_ceil ceilf
 #else
 typedef double tse_real;
 #define TSE_R(x) x
@@ -42,6 +43,7 @@ typedef double tse_real;
 #define tse_atan2 atan2
 #define tse_fabs fabs
 #define tse_cbrt cbrt
+#define tse_ceil ceil
 #endif
 
 #define TSE_PI TSE_R(3.14159265358979323846)
