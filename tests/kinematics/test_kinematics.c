@@ -256,7 +256,8 @@ static void test_fk_of_ik(void **state)
     (void)state;
     srand(31);
     int n = 0;
-    while (n < 500) {
+    /* Bounded: a broken library must fail this test, not hang it. */
+    for (int attempt = 0; attempt < 20000 && n < 500; ++attempt) {
         const double p[6] = {U(-0.3, 0.3), U(-0.3, 0.3), U(0.4, 1.5), U(-0.2, 0.2), U(-0.2, 0.2), U(-0.5, 0.5)};
         tse_ik_result r;
         if (ik(p, &r) != TSE_OK)
@@ -271,6 +272,7 @@ static void test_fk_of_ik(void **state)
         for (int k = 0; k < 6; ++k)
             assert_true(fabs((double)f.pose[k] - p[k]) <= POSE_TOL);
     }
+    assert_int_equal(n, 500);
     /* Slides that belong to no pose: a failure, never a pose. */
     const tse_real q[6] = {0.05, 0.85, 0.85, 0.05, 0.05, 0.05};
     tse_fk_result f;
@@ -289,7 +291,7 @@ static void test_jacobian_vs_differences(void **state)
     const double h = 1e-6, tol = 1e-7;
 #endif
     int n = 0;
-    while (n < 200) {
+    for (int attempt = 0; attempt < 20000 && n < 200; ++attempt) {
         const double p[6] = {U(-0.3, 0.3), U(-0.3, 0.3), U(0.4, 1.5), U(-0.2, 0.2), U(-0.2, 0.2), U(-0.5, 0.5)};
         tse_ik_result r;
         if (ik(p, &r) != TSE_OK || r.mu[0] < 0.2 || r.mu[1] < 0.2 || r.mu[2] < 0.2)
@@ -318,6 +320,7 @@ static void test_jacobian_vs_differences(void **state)
                 assert_true(fabs(fd - (double)J[row][c]) <= tol * (1 + fabs(fd)));
             }
     }
+    assert_int_equal(n, 200);
 }
 
 /* U diag(s) V^T with U, V products of Givens rotations: the singular values are s. */
