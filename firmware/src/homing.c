@@ -7,7 +7,7 @@
 /* The release creep runs at this fraction of the homing speed, so that the slide moves less than
  * a step per control tick and the switch edge (the zero) is found to within one step: a step of
  * slide error is several micrometres at the plate. */
-#define CREEP_FRACTION TSE_R(1.0 / 64.0)
+#define CREEP_FRACTION TSE_R(0.015625) /* 1/64 */
 /* Margin of travel beyond the full stroke before a missing switch is declared. */
 #define SEEK_MARGIN TSE_R(0.05)
 
