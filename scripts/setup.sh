@@ -10,6 +10,7 @@ packages=(
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi   # the board build
   python3 python3-mpmath            # the independent high-precision oracle
   python3-numpy python3-scipy       # the fsolve baseline of the benchmark
+  python3-canmatrix python3-can     # third-party decoders that check the DBC
 )
 
 missing=()
