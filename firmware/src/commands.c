@@ -20,7 +20,7 @@ static const uint8_t allowed[PM_COUNT][FW_STATE_COUNT] = {
     [PM_POSE_A] = {S, A, A, A, A, A, A, A},
     [PM_POSE_B] = {S, A, A, A, A, A, A, A},
     [PM_POSE_C] = {S, A, A, A, A, A, A, A},
-    [PM_MOVE_COMMIT] = {S, S, S, A, S, S, S, S},
+    [PM_MOVE_COMMIT] = {S, S, S, A, A, S, S, S},
     [PM_TRAJ_COMMIT] = {S, S, S, A, A, S, S, S},
     [PM_PARAM_GET] = {A, A, A, A, A, A, A, A},
     [PM_PARAM_SET] = {S, A, S, S, S, S, A, A},
@@ -133,19 +133,39 @@ static void move_commit(fw_controller *c, const proto_message *m, uint8_t functi
         fw_reject(c, function, seq, r, 0, NULL);
         return;
     }
+    const bool queued = c->state == FW_STATE_MOVING;
+    if (queued && (c->src != FW_SRC_MOVE || c->stopping)) {
+        fw_reject(c, function, seq, FW_REASON_STATE, 0, NULL);
+        return;
+    }
+    if (queued && c->has_next) {
+        fw_reject(c, function, seq, FW_REASON_QUEUE_FULL, 0, NULL);
+        return;
+    }
     const fw_move_kind kind = m->v[1] == 0 ? FW_MOVE_DURATION : FW_MOVE_SPEED;
     const tse_real value = kind == FW_MOVE_DURATION ? (tse_real)m->v[2] * TSE_R(1e-3)
                                                     : (tse_real)m->v[2] * TSE_R(1e-6);
+    /* A move committed during another starts from that one's end. */
+    fw_move *mv = queued ? &c->next : &c->move;
+    const tse_real *from = queued ? c->move.to : c->pose;
+    const tse_real *q_from = queued ? c->move.q_end : c->q;
     fw_plan_result why;
-    if (fw_move_plan(&c->move, &c->geom, &c->lim, c->pose, to, kind, value, c->q, &why) != 0) {
+    if (fw_move_plan(mv, &c->geom, &c->lim, from, to, kind, value, q_from, &why) != 0) {
         fw_reject(c, function, seq, why.reason, 0, &why);
         /* A refused pose is spent: its sequence number cannot be committed again. */
         accept_commit(c, seq);
         return;
     }
     accept_commit(c, seq);
-    fw_start_source(c, FW_SRC_MOVE);
-    fw_ack(c, function, seq, (uint32_t)(c->move.prof.T * TSE_R(1000.0) + TSE_R(0.5)));
+    if (queued) {
+        /* Blend if the path allows, else run it back to back; setpoints already queued for the
+         * step generator are behind us. */
+        fw_move_blend(&c->move, &c->next, &c->geom, &c->lim, c->segments_run + 2u, &c->blend_k0);
+        c->has_next = true;
+    } else {
+        fw_start_source(c, FW_SRC_MOVE);
+    }
+    fw_ack(c, function, seq, (uint32_t)(mv->prof.T * TSE_R(1000.0) + TSE_R(0.5)));
 }
 
 static void traj_commit(fw_controller *c, const proto_message *m, uint8_t function)

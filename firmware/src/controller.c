@@ -108,6 +108,7 @@ void fw_estop(fw_controller *c)
     stepgen_abort(&c->sg);
     fw_drives(c, false);
     c->src = FW_SRC_NONE;
+    c->has_next = false;
     c->stopping = false;
     c->home.active = false;
     c->homed = false; /* steps may have been lost under the abrupt stop: home again */
@@ -122,6 +123,7 @@ static void latch_fault(fw_controller *c, fw_fault f)
     c->fault = f;
     c->pending_fault = FW_FAULT_NONE;
     c->src = FW_SRC_NONE;
+    c->has_next = false;
     c->stopping = false;
     c->home.active = false;
     fw_drives(c, false);
@@ -173,6 +175,7 @@ void fw_fault_raise(fw_controller *c, fw_fault f)
 void fw_start_source(fw_controller *c, fw_source src)
 {
     c->src = src;
+    c->has_next = false;
     c->tau = TSE_R(0.0);
     c->segments_run = 0;
     c->stopping = false;
@@ -227,8 +230,9 @@ static void run_source(fw_controller *c)
 {
     bool last;
     tse_real end;
+    const tse_real t0 = (tse_real)c->blend_k0 / (tse_real)c->cfg.segment_hz;
     if (c->src == FW_SRC_MOVE)
-        end = c->move.prof.T;
+        end = c->has_next ? t0 + c->next.prof.T : c->move.prof.T;
     else
         end = c->traj.closed ? (tse_real)fw_traj_end_us(&c->traj) * TSE_R(1e-6) : (tse_real)INFINITY;
     const uint32_t grid = c->segments_run + 1u;
@@ -236,7 +240,10 @@ static void run_source(fw_controller *c)
     tse_real pose[6];
     bool inside = true;
     if (c->src == FW_SRC_MOVE) {
-        fw_move_pose(&c->move, tau, pose);
+        if (c->has_next)
+            fw_move_blend_pose(&c->move, &c->next, c->blend_k0, &c->lim, tau, pose);
+        else
+            fw_move_pose(&c->move, tau, pose);
     } else {
         /* On the grid the time is exact in microseconds, as validation sampled it. */
         uint64_t tau_us = c->stopping ? (uint64_t)(tau * TSE_R(1e6) + TSE_R(0.5))
@@ -261,8 +268,17 @@ static void run_source(fw_controller *c)
         c->pose[k] = pose[k];
     push_slides(c, r.q);
     c->tau = tau;
-    if (last)
+    if (c->src == FW_SRC_MOVE && c->has_next && tau >= c->move.prof.T && !last) {
+        /* The first move is over: the second goes on alone, on the same grid. */
+        c->move = c->next;
+        c->has_next = false;
+        c->segments_run -= c->blend_k0;
+        c->tau -= t0;
+    }
+    if (last) {
         c->src = FW_SRC_NONE;
+        c->has_next = false;
+    }
 }
 
 /* The joint-space move that ends homing: straight in slide space. */

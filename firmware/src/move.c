@@ -39,7 +39,7 @@ static tse_real min_pos(tse_real a, tse_real b)
  * the slide limits, or -1 with the first failing point in *res. */
 /* Walks the path as execution will.  Returns 0 with the worst speed and acceleration ratios to
  * the slide limits, or -1 with the first failing point in *res. */
-static int walk(const fw_move *mv, const tse_geometry *g, const fw_limits *lim,
+static int walk(fw_move *mv, const tse_geometry *g, const fw_limits *lim,
                 const tse_real q_from[6], tse_real *v_ratio, tse_real *a_ratio, fw_plan_result *res)
 {
     fw_slide_check chk;
@@ -66,6 +66,8 @@ static int walk(const fw_move *mv, const tse_geometry *g, const fw_limits *lim,
     fw_slide_check_finish(&chk);
     *v_ratio = chk.v_ratio;
     *a_ratio = chk.a_ratio;
+    for (int k = 0; k < 6; ++k)
+        mv->q_end[k] = chk.q[k];
     return 0;
 }
 
@@ -85,6 +87,7 @@ int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const
         }
         mv->from[k] = from[k];
         mv->to[k] = to[k];
+        mv->q_from[k] = q_from[k];
     }
     if (!(value > TSE_R(0.0)) || !isfinite(value)) {
         res->reason = FW_REASON_RANGE;
@@ -150,4 +153,70 @@ int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const
     /* Still too fast after every round: refuse rather than exceed a limit. */
     res->reason = FW_REASON_TIMING;
     return -1;
+}
+
+void fw_move_blend_pose(const fw_move *a, const fw_move *b, uint32_t k0, const fw_limits *lim, tse_real t,
+                        tse_real pose[6])
+{
+    const tse_real t0 = (tse_real)k0 / lim->segment_hz;
+    if (t < t0) {
+        fw_move_pose(a, t, pose);
+        return;
+    }
+    if (t >= a->prof.T) {
+        fw_move_pose(b, t - t0, pose);
+        return;
+    }
+    /* a's pose, plus b's progress since its start: b's displacement added, b's rotation
+     * increment (b->q1 b->q0^-1)^u composed onto a's orientation. */
+    tse_real u_a, u_b, du, ddu;
+    fw_profile_eval(&a->prof, t, &u_a, &du, &ddu);
+    fw_profile_eval(&b->prof, t - t0, &u_b, &du, &ddu);
+    for (int k = 0; k < 3; ++k)
+        pose[k] = a->from[k] + u_a * a->dp[k] + u_b * b->dp[k];
+    tse_real qa[4], inv[4], rel[4], step[4], q[4];
+    static const tse_real identity[4] = {TSE_R(1.0), TSE_R(0.0), TSE_R(0.0), TSE_R(0.0)};
+    fw_quat_slerp(a->q0, a->q1, u_a, qa);
+    fw_quat_conj(b->q0, inv);
+    fw_quat_mul(b->q1, inv, rel);
+    fw_quat_slerp(identity, rel, u_b, step);
+    fw_quat_mul(step, qa, q);
+    fw_quat_to_rpy(q, &pose[3]);
+}
+
+int fw_move_blend(const fw_move *a, const fw_move *b, const tse_geometry *g, const fw_limits *lim,
+                  uint32_t earliest, uint32_t *k0)
+{
+    *k0 = a->segments;
+    const tse_real overlap = a->prof.Ta < b->prof.Ta ? a->prof.Ta : b->prof.Ta;
+    const tse_real start = (a->prof.T - overlap) * lim->segment_hz;
+    if (!(start > TSE_R(0.0)) || b->segments == 0)
+        return 1;
+    const uint32_t k = (uint32_t)tse_ceil(start);
+    if (k < earliest || k >= a->segments)
+        return 1;
+    /* Walk a then b with the blend, as execution will, from a's start. */
+    const tse_real t0 = (tse_real)k / lim->segment_hz;
+    const uint32_t total = k + b->segments;
+    fw_slide_check chk;
+    fw_slide_check_start(&chk, lim->slide_vmax * LIMIT_MARGIN, lim->slide_amax * LIMIT_MARGIN,
+                         lim->segment_hz, a->q_from);
+    tse_real t_prev = TSE_R(0.0);
+    for (uint32_t s = 1; s <= total; ++s) {
+        tse_real t = (tse_real)s / lim->segment_hz;
+        if (s == total)
+            t = t0 + b->prof.T;
+        tse_real pose[6];
+        fw_move_blend_pose(a, b, k, lim, t, pose);
+        tse_ik_result r;
+        if (tse_ik(g, pose, chk.q, &r) != TSE_OK)
+            return 1;
+        fw_slide_check_feed(&chk, r.q, t - t_prev);
+        t_prev = t;
+    }
+    fw_slide_check_finish(&chk);
+    if (chk.v_ratio > TSE_R(1.0) || chk.a_ratio > TSE_R(1.0))
+        return 1;
+    *k0 = k;
+    return 0;
 }

@@ -74,3 +74,23 @@ void fw_quat_slerp(const tse_real a[4], const tse_real b[4], tse_real u, tse_rea
     }
     normalize(out);
 }
+
+void fw_quat_mul(const tse_real b[4], const tse_real a[4], tse_real out[4])
+{
+    const tse_real w = b[0] * a[0] - b[1] * a[1] - b[2] * a[2] - b[3] * a[3];
+    const tse_real x = b[0] * a[1] + b[1] * a[0] + b[2] * a[3] - b[3] * a[2];
+    const tse_real y = b[0] * a[2] - b[1] * a[3] + b[2] * a[0] + b[3] * a[1];
+    const tse_real z = b[0] * a[3] + b[1] * a[2] - b[2] * a[1] + b[3] * a[0];
+    out[0] = w;
+    out[1] = x;
+    out[2] = y;
+    out[3] = z;
+}
+
+void fw_quat_conj(const tse_real a[4], tse_real out[4])
+{
+    out[0] = a[0];
+    out[1] = -a[1];
+    out[2] = -a[2];
+    out[3] = -a[3];
+}

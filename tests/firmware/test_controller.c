@@ -166,7 +166,7 @@ static void test_state_table(void **state)
     } rows[] = {
         {PM_ESTOP, "aaaaaaa"},       {PM_STOP, "aaaaaaa"},        {PM_HOST_HEARTBEAT, "-------"},
         {PM_ENABLE, "arrrrrr"},      {PM_DISABLE, "ararraa"},     {PM_HOME, "rrarrrr"},
-        {PM_CLEAR_FAULT, "rrrrraa"}, {PM_POSE_A, "-------"},      {PM_MOVE_COMMIT, "rrarrrr"},
+        {PM_CLEAR_FAULT, "rrrrraa"}, {PM_POSE_A, "-------"},      {PM_MOVE_COMMIT, "rraarrr"},
         {PM_TRAJ_COMMIT, "rrarrrr"}, {PM_PARAM_GET, "aaaaaaa"},   {PM_PARAM_SET, "arrrraa"},
         {PM_PARAM_SAVE, "arrrraa"},
     };
@@ -255,6 +255,61 @@ static void test_move_lands_on_target_steps(void **state)
         const long want = lround(r.q[k] * 640000.0);
         assert_int_equal(F.steps[k] - F.switch_at - 1, want);
     }
+}
+
+/* A move committed during another is blended in: the slides do not come to rest between the two,
+ * and the robot ends on the second target to the step.  A third is refused while two are held. */
+static void test_blended_moves(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    const double first[6] = {0.06, 0.0, 1.05, 0, 0, 0}, second[6] = {0.06, 0.06, 1.10, 0, 0, 0.05};
+    unsigned from = F.tx_count;
+    move_to(first, 1500);
+    run(200);
+    move_to(second, 1500);
+    run(10);
+    assert_int_equal(answer(from, 0x0D, NULL), 'a');
+    assert_true(C.has_next);
+    assert_true(C.blend_k0 < C.move.segments); /* blended, not back to back */
+    from = F.tx_count;
+    const double third[6] = {0, 0, 1.0, 0, 0, 0};
+    move_to(third, 1500);
+    fw_poll(&C);
+    uint8_t reason = 0;
+    assert_int_equal(answer(from, 0x0D, &reason), 'r');
+    assert_int_equal(reason, FW_REASON_QUEUE_FULL);
+    /* Watch the steps per 10 ms until the end: once moving, never at rest until the last stretch. */
+    long prev = 0;
+    for (int k = 0; k < 6; ++k)
+        prev += F.steps[k];
+    int moving_windows = 0, rest_between = 0, started = 0, stopped = 0;
+    for (int i = 0; i < 800 && C.state != FW_STATE_IDLE; ++i) {
+        run(10);
+        long now = 0, diff = 0;
+        for (int k = 0; k < 6; ++k)
+            now += F.steps[k];
+        diff = labs(now - prev);
+        int32_t steps[6];
+        stepgen_positions(&C.sg, steps);
+        (void)steps;
+        if (diff > 0) {
+            if (stopped)
+                rest_between = 1;
+            started = 1;
+            ++moving_windows;
+        } else if (started) {
+            stopped = 1;
+        }
+        prev = now;
+    }
+    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_false(rest_between);
+    assert_true(moving_windows > 100);
+    tse_ik_result r;
+    assert_int_equal(tse_ik(&C.geom, second, NULL, &r), TSE_OK);
+    for (int k = 0; k < 6; ++k)
+        assert_int_equal(F.steps[k] - F.switch_at - 1, lround(r.q[k] * 640000.0));
 }
 
 static void test_staging_is_atomic(void **state)
@@ -523,6 +578,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_state_table),
         cmocka_unit_test(test_move_lands_on_target_steps),
+        cmocka_unit_test(test_blended_moves),
         cmocka_unit_test(test_staging_is_atomic),
         cmocka_unit_test(test_unreachable_pose_rejected_without_motion),
         cmocka_unit_test(test_malformed_frames),

@@ -168,6 +168,69 @@ static void test_unreachable_target_and_bad_input(void **state)
     assert_int_equal(fw_move_plan(&mv, &G, &LIM, from, from, FW_MOVE_DURATION, 0.0, q0, &res), -1);
 }
 
+/* Two moves blended: the path stays within every slide limit when sampled independently, the
+ * plate keeps moving through the junction, and it ends on the second target. */
+static void test_blend(void **state)
+{
+    (void)state;
+    const double p0[6] = {0, 0, 1.0, 0, 0, 0}, p1[6] = {0.08, 0, 1.05, 0, 0, 0.05}, p2[6] = {0.08, 0.08, 1.1, 0.03, 0, 0};
+    double q0[6];
+    solve(p0, NULL, q0);
+    static fw_move a, b;
+    fw_plan_result res;
+    assert_int_equal(fw_move_plan(&a, &G, &LIM, p0, p1, FW_MOVE_DURATION, 3.0, q0, &res), 0);
+    assert_int_equal(fw_move_plan(&b, &G, &LIM, p1, p2, FW_MOVE_DURATION, 3.0, a.q_end, &res), 0);
+    uint32_t k0;
+    assert_int_equal(fw_move_blend(&a, &b, &G, &LIM, 0, &k0), 0);
+    assert_true(k0 < a.segments);
+    const double t0 = k0 / LIM.segment_hz, T = t0 + b.prof.T;
+    const int n = (int)ceil(T * LIM.segment_hz);
+    enum { STRIDE = 10 };
+    double q[6], prev_pose[6], vpeak = 0, apeak = 0, min_speed = 1e9;
+    double (*vel)[6] = calloc((size_t)n + 1, sizeof *vel);
+    for (int k = 0; k < 6; ++k)
+        q[k] = q0[k];
+    fw_move_blend_pose(&a, &b, k0, &LIM, 0.0, prev_pose);
+    for (int s = 1; s <= n; ++s) {
+        const double t = s == n ? T : s / LIM.segment_hz;
+        double pose[6], qn[6];
+        fw_move_blend_pose(&a, &b, k0, &LIM, t, pose);
+        solve(pose, q, qn);
+        const double dt = t - (s - 1) / LIM.segment_hz;
+        double speed = 0;
+        for (int k = 0; k < 3; ++k)
+            speed += (pose[k] - prev_pose[k]) * (pose[k] - prev_pose[k]);
+        speed = sqrt(speed) / dt;
+        /* Through the junction (a's last ramp), the plate never stops. */
+        if (t > a.prof.T - a.prof.Ta && t < a.prof.T + 0.2 * b.prof.Ta)
+            min_speed = fmin(min_speed, speed);
+        for (int k = 0; k < 6; ++k) {
+            vel[s][k] = (qn[k] - q[k]) / dt;
+            vpeak = fmax(vpeak, fabs(vel[s][k]));
+            if (s >= STRIDE) /* speed change over 10 segments, from rest before the start */
+                apeak = fmax(apeak, fabs(vel[s][k] - vel[s - STRIDE][k]) * LIM.segment_hz / STRIDE);
+            q[k] = qn[k];
+            prev_pose[k] = pose[k];
+        }
+    }
+    free(vel);
+    assert_true(vpeak <= LIM.slide_vmax);
+    assert_true(apeak <= LIM.slide_amax);
+    assert_true(min_speed > 1e-3);
+    for (int k = 0; k < 6; ++k)
+        assert_true(fabs(prev_pose[k] - p2[k]) < 1e-12);
+    /* Moves stretched to the slide limits cannot overlap (their speeds would add): back to back. */
+    static fw_move fa, fb;
+    assert_int_equal(fw_move_plan(&fa, &G, &LIM, p0, p1, FW_MOVE_DURATION, 0.2, q0, &res), 0);
+    assert_int_equal(fw_move_plan(&fb, &G, &LIM, p1, p2, FW_MOVE_DURATION, 0.2, fa.q_end, &res), 0);
+    assert_true(fa.stretch > 1.0 && fb.stretch > 1.0);
+    assert_int_equal(fw_move_blend(&fa, &fb, &G, &LIM, 0, &k0), 1);
+    assert_int_equal(k0, fa.segments);
+    /* Too late to blend: back to back. */
+    assert_int_equal(fw_move_blend(&a, &b, &G, &LIM, a.segments, &k0), 1);
+    assert_int_equal(k0, a.segments);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -176,6 +239,7 @@ int main(void)
         cmocka_unit_test(test_speed_mode),
         cmocka_unit_test(test_leaves_workspace_midway),
         cmocka_unit_test(test_unreachable_target_and_bad_input),
+        cmocka_unit_test(test_blend),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -95,6 +95,9 @@ typedef struct {
     /* Motion */
     fw_source src;
     fw_move move;
+    fw_move next;           /* a move committed while `move` runs, blended into it */
+    bool has_next;
+    uint32_t blend_k0;      /* segment of `move` at which `next` starts */
     fw_joint_move joint;
     fw_traj traj;
     tse_real tau;           /* path time of the running source [s] */

@@ -33,6 +33,8 @@ typedef struct {
     fw_profile prof;    /* of u, D = 1 */
     uint32_t segments;  /* control segments; the last one ends exactly at prof.T */
     tse_real stretch;   /* time factor the slide limits imposed (1: none) */
+    tse_real q_from[6]; /* slides at the start */
+    tse_real q_end[6];  /* slides at the end, as validation solved them */
 } fw_move;
 
 typedef struct {
@@ -54,5 +56,20 @@ void fw_move_pose(const fw_move *mv, tse_real t, tse_real pose[6]);
 
 /* Time of control segment k's end: k / rate, the last one exactly at the end. */
 tse_real fw_move_segment_time(const fw_move *mv, const fw_limits *lim, uint32_t k);
+
+/* Blending a second move into a running one, without stopping between them.
+ *
+ * b was planned from a's end pose (fw_move_plan, from rest: the fallback).  The blend starts b
+ * during a's deceleration, at segment k0 of a, so that the two overlap for min(a's ramp, b's
+ * ramp) and end together with a's end: positions add, b's rotation composes onto a's.  The whole
+ * of a then b is walked as execution will run it; if the blend leaves the workspace or a slide
+ * limit, or k0 would be before `earliest`, *k0 = a->segments (back to back) and 1 is returned;
+ * 0 when the blend holds. */
+int fw_move_blend(const fw_move *a, const fw_move *b, const tse_geometry *g, const fw_limits *lim,
+                  uint32_t earliest, uint32_t *k0);
+
+/* Pose at time t of a's clock when b starts at segment k0 of a. */
+void fw_move_blend_pose(const fw_move *a, const fw_move *b, uint32_t k0, const fw_limits *lim, tse_real t,
+                        tse_real pose[6]);
 
 #endif

@@ -18,4 +18,8 @@ tse_real fw_quat_angle(const tse_real a[4], const tse_real b[4]);
 /* Along the shortest arc from a (u = 0) to b (u = 1). */
 void fw_quat_slerp(const tse_real a[4], const tse_real b[4], tse_real u, tse_real out[4]);
 
+/* The rotation a then b (b * a), and the inverse of a unit quaternion. */
+void fw_quat_mul(const tse_real b[4], const tse_real a[4], tse_real out[4]);
+void fw_quat_conj(const tse_real a[4], tse_real out[4]);
+
 #endif
