@@ -103,13 +103,15 @@ static void stage(fw_controller *c, const proto_message *m, uint8_t function)
     c->stage_v[2 * part + 1] = m->v[2];
 }
 
-/* The staged pose of seq, in SI units, or a reason why there is none. */
-static fw_reason staged_pose(const fw_controller *c, uint8_t seq, tse_real pose[6])
+/* The staged pose a commit of seq would move to, in SI units, or why there is none. */
+static fw_reason commit_target(const fw_controller *c, uint8_t seq, tse_real pose[6])
 {
     if (c->any_commit && !newer(seq, c->last_seq))
         return FW_REASON_STALE;
     if (c->stage_have != 7u || c->stage_seq != seq)
         return FW_REASON_INCOMPLETE;
+    if (!c->homed)
+        return FW_REASON_NOT_HOMED;
     for (int k = 0; k < 6; ++k)
         pose[k] = (tse_real)c->stage_v[k] * TSE_R(1e-6);
     return FW_REASON_NONE;
@@ -126,9 +128,7 @@ static void move_commit(fw_controller *c, const proto_message *m, uint8_t functi
 {
     const uint8_t seq = (uint8_t)m->v[0];
     tse_real to[6];
-    fw_reason r = staged_pose(c, seq, to);
-    if (r == FW_REASON_NONE && !c->homed)
-        r = FW_REASON_NOT_HOMED;
+    const fw_reason r = commit_target(c, seq, to);
     if (r != FW_REASON_NONE) {
         fw_reject(c, function, seq, r, 0, NULL);
         return;
@@ -172,9 +172,7 @@ static void traj_commit(fw_controller *c, const proto_message *m, uint8_t functi
 {
     const uint8_t seq = (uint8_t)m->v[0];
     tse_real to[6];
-    fw_reason r = staged_pose(c, seq, to);
-    if (r == FW_REASON_NONE && !c->homed)
-        r = FW_REASON_NOT_HOMED;
+    fw_reason r = commit_target(c, seq, to);
     if (r == FW_REASON_NONE && c->state == FW_STATE_MOVING && c->src != FW_SRC_TRAJ)
         r = FW_REASON_STATE;
     if (r != FW_REASON_NONE) {

@@ -1,6 +1,5 @@
-/* Monotonic time base.  The control tick and the step interrupt are not callbacks registered
- * here: the platform's timer (an interrupt on the board, timerfd on the host) calls the
- * firmware's tick functions, so the firmware never needs to know how time is kept. */
+/* Monotonic time base (watchdog, telemetry periods).  The periodic events that drive the
+ * firmware are hal/ticker.h's. */
 #ifndef HAL_CLOCK_H
 #define HAL_CLOCK_H
 
