@@ -40,19 +40,24 @@ void tse_scissor_residual(const tse_geometry *g, int i, const tse_real C[3], tse
     tse_scissor_eval(g, &loc, s_a, s_b, F, M);
 }
 
-/* Newton from (s_a, s_b) with steps bounded by step_max.  It stops once a step is below
- * 0.1 sqrt(eps) L, or earlier once two successive steps show quadratic convergence and predict an
- * error (n_k^3 / n_{k-1}^2) below 1e-4 sqrt(eps) L (2.6e-12 m in double, 400 times inside the
- * contract's 1e-9 m; in float the first test governs): a warm start then needs two steps, not three.
- * Returns 1 on convergence. */
+/* Newton from (s_a, s_b) with steps bounded by step_max.  It stops once a step n is below
+ * sqrt(1e-3 eps) L: the error left, K n^2, is then below eps L for any curvature K up to 1e3 / L
+ * (8e-10 m in double; 1.9e-5 m in float, still well above float's rounding floor of ~3e-7 m);
+ * or earlier, once two successive steps show quadratic convergence and predict an error
+ * (n_k^3 / n_{k-1}^2) below 1e-4 sqrt(eps) L (2.6e-12 m in double): a warm start then needs two
+ * steps, not three.  That estimate of the curvature (n_k / n_{k-1}^2) only holds in the quadratic
+ * regime, so it is trusted only after a step n_{k-1} below 1e-3 L: a large first step from a cold
+ * seed lands anywhere, and its successor says nothing of the curvature.  A small step is not proof of a root (it can stall where |F| has a minimum),
+ * so the caller checks the residual.  Returns 1 on convergence. */
 static int newton(const tse_geometry *g, const tse_scissor_local *loc, tse_real *s_a, tse_real *s_b,
                   int max_iter, int *iterations)
 {
     /* Compared as squares: the hot loop takes no square root unless a step must be clipped. */
-    const tse_real tol = TSE_R(0.1) * tse_sqrt(TSE_REAL_EPS) * g->p.L;
+    const tse_real tol = tse_sqrt(TSE_R(1e-3) * TSE_REAL_EPS) * g->p.L;
     const tse_real tol_final = TSE_R(1e-4) * tse_sqrt(TSE_REAL_EPS) * g->p.L;
     const tse_real tol2 = tol * tol, tol_final2 = tol_final * tol_final;
     const tse_real max2 = g->step_max * g->step_max;
+    const tse_real regime2 = TSE_R(1e-6) * g->p.L * g->p.L;
     tse_real a = *s_a, b = *s_b, prev2 = TSE_R(0.0);
     for (int it = 1; it <= max_iter; ++it) {
         tse_real F[2], M[2][2];
@@ -75,8 +80,8 @@ static int newton(const tse_geometry *g, const tse_scissor_local *loc, tse_real 
         b -= db;
         *iterations += 1;
         /* n_k <= n_{k-1} / 4 and n_k^3 <= tol_final n_{k-1}^2, squared. */
-        const int quadratic =
-            it > 1 && TSE_R(16.0) * n2 <= prev2 && n2 * n2 * n2 <= tol_final2 * prev2 * prev2;
+        const int quadratic = it > 1 && prev2 <= regime2 && TSE_R(16.0) * n2 <= prev2 &&
+                              n2 * n2 * n2 <= tol_final2 * prev2 * prev2;
         if (n2 <= tol2 || quadratic) {
             *s_a = a;
             *s_b = b;
@@ -85,6 +90,18 @@ static int newton(const tse_geometry *g, const tse_scissor_local *loc, tse_real 
         prev2 = n2;
     }
     return 0;
+}
+
+/* Whether (s_a, s_b) solves the pair: a stalled iteration leaves |F| of 1e-2 and more, a root at
+ * most the stopping error times |M| plus rounding; sqrt(eps) of the size of F's terms lies well
+ * between (9e-8 in double, 2e-3 in float). */
+static int solves(const tse_geometry *g, const tse_scissor_local *loc, tse_real s_a, tse_real s_b)
+{
+    tse_real F[2], M[2][2];
+    tse_scissor_eval(g, loc, s_a, s_b, F, M);
+    const tse_real w2 = s_a * s_a + s_b * s_b + TSE_R(2.0) * g->c * s_a * s_b;
+    const tse_real scale = loc->rho2 + g->p.L * g->p.L + tse_fabs(g->g) * w2 + s_a * s_a + s_b * s_b;
+    return tse_fabs(F[0]) + tse_fabs(F[1]) <= tse_sqrt(TSE_REAL_EPS) * scale;
 }
 
 /* Fills everything but the iteration counts; returns 1 when (s_a, s_b) is on the physical sheet. */
@@ -142,13 +159,8 @@ static int enumerate(const tse_geometry *g, const tse_scissor_local *loc, tse_re
         /* The root came from a squared-up polynomial: polish it on the equations themselves. */
         newton(g, loc, &a, &b, POLISH_MAX_ITER, iterations);
         tse_scissor_solution cand;
-        if (!describe(g, loc, a, b, &cand))
-            continue;
-        tse_real F[2], M[2][2];
-        tse_scissor_eval(g, loc, a, b, F, M);
         /* A polish that wandered off a spurious root leaves a residual far above rounding. */
-        const tse_real scale = loc->rho2 + L * L + tse_fabs(ga) * cand.w * cand.w;
-        if (!(tse_fabs(F[0]) + tse_fabs(F[1]) <= TSE_R(1e3) * TSE_REAL_EPS * scale))
+        if (!describe(g, loc, a, b, &cand) || !solves(g, loc, a, b))
             continue;
         const int in = within_limits(g, &cand);
         const tse_real dist = (a - seed_a) * (a - seed_a) + (b - seed_b) * (b - seed_b);
@@ -174,8 +186,8 @@ tse_status tse_scissor_solve(const tse_geometry *g, int i, const tse_real C[3], 
     tse_scissor_localize(g, i, C, &loc);
     tse_real a = seed_a, b = seed_b;
     int iterations = 0;
-    if (newton(g, &loc, &a, &b, NEWTON_MAX_ITER, &iterations) && describe(g, &loc, a, b, out) &&
-        within_limits(g, out)) {
+    if (newton(g, &loc, &a, &b, NEWTON_MAX_ITER, &iterations) && solves(g, &loc, a, b) &&
+        describe(g, &loc, a, b, out) && within_limits(g, out)) {
         out->iterations = iterations;
         return TSE_OK;
     }
