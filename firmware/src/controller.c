@@ -43,6 +43,15 @@ int fw_apply_params(fw_controller *c, const fw_param_set *s)
     fw_params_kinematics(s, &kp);
     if (tse_geometry_init(&g, &kp) != TSE_PARAM_OK)
         return -1;
+    /* Two steps of one slide at least step_hz / step_rate_max ticks apart. */
+    const uint32_t interval = (c->cfg.step_hz + (uint32_t)s->v[FP_STEP_RATE_MAX] - 1u) / (uint32_t)s->v[FP_STEP_RATE_MAX];
+    const stepgen_config sc = {c->cfg.step_hz / c->cfg.segment_hz, 1u, interval ? interval : 1u};
+    int32_t pos[STEPGEN_AXES];
+    stepgen_positions(&c->sg, pos);
+    if (!stepgen_idle(&c->sg) || stepgen_init(&c->sg, &sc, pos) != 0)
+        return -1; /* parameters change only at rest */
+    /* A fresh generator assumes its direction mask: make the pins agree with it. */
+    c->hal.stepper.set_dir(c->hal.stepper.ctx, c->sg.forward_mask);
     c->params = *s;
     c->geom = g;
     const tse_real micro = TSE_R(1e-6);
@@ -77,10 +86,6 @@ int fw_init(fw_controller *c, const fw_hal *hal, const fw_config *cfg)
     c->hal = *hal;
     c->cfg = *cfg;
     c->state = FW_STATE_BOOT;
-    const stepgen_config sc = {cfg->step_hz / cfg->segment_hz, 1u, 2u};
-    const int32_t zero[STEPGEN_AXES] = {0};
-    if (stepgen_init(&c->sg, &sc, zero) != 0)
-        return -1;
 
     fw_param_set s;
     fw_params_default(&s);
@@ -130,6 +135,21 @@ static void latch_fault(fw_controller *c, fw_fault f)
     fw_set_state(c, FW_STATE_FAULT);
 }
 
+/* Length of a stop ramp of the path's time rate from 1 to 0 (cycloidal): a slide moving at v
+ * brakes at most 2 v / T.  `share` is the part of the acceleration limit the braking may take;
+ * the path's own acceleration has the rest. */
+static tse_real stop_time(const fw_controller *c, tse_real share)
+{
+    tse_real v = TSE_R(0.0);
+    for (int k = 0; k < 6; ++k) {
+        const tse_real vk = tse_fabs(c->q[k] - c->q_prev[k]) * (tse_real)c->cfg.segment_hz;
+        if (vk > v)
+            v = vk;
+    }
+    tse_real T = TSE_R(2.0) * v / (share * c->lim.slide_amax);
+    return T < MIN_STOP_TIME ? MIN_STOP_TIME : T;
+}
+
 void fw_stop_motion(fw_controller *c)
 {
     if (c->home.active) {
@@ -142,21 +162,19 @@ void fw_stop_motion(fw_controller *c)
     }
     if (c->src == FW_SRC_NONE || c->stopping)
         return;
-    /* A cycloidal ramp of the path's time rate from 1 to 0: a slide moving at v decelerates at
-     * most 2 v / T, which the ramp length keeps within the slide acceleration limit. */
-    tse_real v = TSE_R(0.0);
-    for (int k = 0; k < 6; ++k) {
-        const tse_real vk = tse_fabs(c->q[k] - c->q_prev[k]) * (tse_real)c->cfg.segment_hz;
-        if (vk > v)
-            v = vk;
+    fw_set_state(c, FW_STATE_STOPPING);
+    if (c->src == FW_SRC_MOVE && !c->has_next && c->tau >= c->move.prof.T - c->move.prof.Ta) {
+        /* Already on its final ramp, which stops within the limits: a second braking on top of
+         * it would not. */
+        return;
     }
-    tse_real T = TSE_R(2.0) * v / (TSE_R(0.9) * c->lim.slide_amax);
-    if (T < MIN_STOP_TIME)
-        T = MIN_STOP_TIME;
+    c->has_next = false;
+    /* A move brakes against its own acceleration (it accelerates along the path, the braking
+     * opposes it), so the braking may take 90 % of the limit; a trajectory's acceleration is the
+     * host's, so it gets half. */
     c->stopping = true;
     c->stop_t = TSE_R(0.0);
-    c->stop_T = T;
-    fw_set_state(c, FW_STATE_STOPPING);
+    c->stop_T = stop_time(c, c->src == FW_SRC_TRAJ ? TSE_R(0.45) : TSE_R(0.9));
 }
 
 void fw_fault_raise(fw_controller *c, fw_fault f)
@@ -170,6 +188,11 @@ void fw_fault_raise(fw_controller *c, fw_fault f)
         return;
     }
     latch_fault(c, f);
+}
+
+void fw_report_fault(fw_controller *c, fw_fault f)
+{
+    fw_fault_raise(c, f);
 }
 
 void fw_start_source(fw_controller *c, fw_source src)
@@ -239,6 +262,15 @@ static void run_source(fw_controller *c)
     const tse_real tau = advance(c, end, &last);
     tse_real pose[6];
     bool inside = true;
+    if (c->src == FW_SRC_TRAJ && !c->traj.closed && !c->stopping) {
+        /* The host is falling behind: once less trajectory is queued than a stop needs, stop
+         * along it while there is room, and latch the underrun. */
+        const tse_real left = (tse_real)fw_traj_end_us(&c->traj) * TSE_R(1e-6) - c->tau;
+        if (left <= TSE_R(0.5) * stop_time(c, TSE_R(0.45)) + TSE_R(2.0) / (tse_real)c->cfg.segment_hz) {
+            c->pending_fault = FW_FAULT_UNDERRUN;
+            fw_stop_motion(c);
+        }
+    }
     if (c->src == FW_SRC_MOVE) {
         if (c->has_next)
             fw_move_blend_pose(&c->move, &c->next, c->blend_k0, &c->lim, tau, pose);

@@ -2,8 +2,10 @@
 
 #include "fw/types.h"
 
-/* Prototype defaults (paper, section VI; kinematics.md).  The motion limits are those of a
- * lead-screw slide with 3200 microsteps per 5 mm, kept well inside the step rate. */
+/* Prototype defaults (paper, section VI; kinematics.md).  The slides: a 200-step motor at 1/64
+ * microstepping on a 10 mm lead, 0.78 um per step, fine enough that rounding the six slides to
+ * whole steps moves the plate by well under 1e-5 rad; their speed limit keeps the step rate
+ * (192 kHz at 0.15 m/s) under the 200 kHz a slide may be stepped at. */
 const fw_param_def fw_param_table[FP_COUNT] = {
     [FP_L] = {"L", "um", 100000, 10000000, 1727000, "total scissor length"},
     [FP_K1] = {"k1", "ppm", 1, 1000000, 264700, "l0 / L"},
@@ -16,8 +18,8 @@ const fw_param_def fw_param_table[FP_COUNT] = {
     [FP_S_MAX] = {"s_max", "um", 1, 5000000, 900000, "slide stroke, high end"},
     [FP_MU_MIN] = {"mu_min", "ppm", 0, 999999, 50000, "type-1 singularity margin"},
     [FP_NU_MIN] = {"nu_min", "ppm", 0, 999999, 1000, "type-2 singularity margin"},
-    [FP_STEPS_PER_M] = {"steps_per_m", "1/m", 1000, 10000000, 640000, "slide steps per metre"},
-    [FP_SLIDE_VMAX] = {"slide_vmax", "um/s", 1000, 2000000, 200000, "slide speed limit"},
+    [FP_STEPS_PER_M] = {"steps_per_m", "1/m", 1000, 10000000, 1280000, "slide steps per metre"},
+    [FP_SLIDE_VMAX] = {"slide_vmax", "um/s", 1000, 2000000, 150000, "slide speed limit"},
     [FP_SLIDE_AMAX] = {"slide_amax", "um/s^2", 1000, 20000000, 1000000, "slide acceleration limit"},
     [FP_PLATE_VMAX] = {"plate_vmax", "um/s", 1000, 5000000, 300000, "plate speed limit"},
     [FP_PLATE_AMAX] = {"plate_amax", "um/s^2", 1000, 50000000, 1000000, "plate acceleration limit"},

@@ -252,7 +252,7 @@ static void test_move_lands_on_target_steps(void **state)
     const double wire[6] = {0.1, -0.05, 1.1, 0.1, -0.05, 0.2};
     assert_int_equal(tse_ik(&C.geom, wire, NULL, &r), TSE_OK);
     for (int k = 0; k < 6; ++k) {
-        const long want = lround(r.q[k] * 640000.0);
+        const long want = lround(r.q[k] * (double)C.params.v[FP_STEPS_PER_M]);
         assert_int_equal(F.steps[k] - F.switch_at - 1, want);
     }
 }
@@ -309,7 +309,7 @@ static void test_blended_moves(void **state)
     tse_ik_result r;
     assert_int_equal(tse_ik(&C.geom, second, NULL, &r), TSE_OK);
     for (int k = 0; k < 6; ++k)
-        assert_int_equal(F.steps[k] - F.switch_at - 1, lround(r.q[k] * 640000.0));
+        assert_int_equal(F.steps[k] - F.switch_at - 1, lround(r.q[k] * (double)C.params.v[FP_STEPS_PER_M]));
 }
 
 static void test_staging_is_atomic(void **state)

@@ -135,4 +135,8 @@ void fw_handle_frame(fw_controller *c, const hal_can_frame *f);
 /* The emergency stop path, for a platform that wires the input to an interrupt. */
 void fw_estop(fw_controller *c);
 
+/* A fault the platform detected (the simulator's plant reports FW_FAULT_PLANT): a controlled stop
+ * if anything moves, then latched, exactly as the controller's own faults. */
+void fw_report_fault(fw_controller *c, fw_fault f);
+
 #endif

@@ -3,8 +3,11 @@
  * taken to be at rest before the first setpoint, and fw_slide_check_finish adds the stop after
  * the last.
  *
- * Accelerations are speed differences over ACC_STRIDE segments: a shorter stride would measure
- * the rounding of the inverse kinematics (1e-7 m in float over (1 ms)^2 is 0.1 m/s^2). */
+ * Acceleration is the second difference over FW_ACC_STRIDE segments,
+ * (q_k - 2 q_{k-S} + q_{k-2S}) / (S T)^2, at every segment: the simulator's plant measures it the
+ * same way, so what planning allows is what the plant accepts.  A shorter stride would measure the
+ * rounding of the inverse kinematics (1e-7 m in float over (1 ms)^2 is 0.1 m/s^2) and the step
+ * quantisation. */
 #ifndef FW_SLIDE_CHECK_H
 #define FW_SLIDE_CHECK_H
 
@@ -18,7 +21,7 @@ typedef struct {
     tse_real vmax, amax;  /* limits, m/s and m/s^2 */
     tse_real segment_hz;
     tse_real q[6];        /* latest setpoint */
-    tse_real vel[FW_ACC_STRIDE][6];
+    tse_real hist[2 * FW_ACC_STRIDE][6]; /* the last 2S setpoints (the start, before any) */
     uint32_t n;           /* setpoints fed */
     tse_real v_ratio;     /* worst |v| / vmax so far */
     tse_real a_ratio;     /* worst |a| / amax so far */

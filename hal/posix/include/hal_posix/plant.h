@@ -1,0 +1,80 @@
+/* The simulator's plant: six slides that integrate the step pulses they receive, limit switches,
+ * an e-stop input, and the plate pose from forward kinematics.  It implements hal_stepper and
+ * hal_inputs, and checks on every step what a real robot needs (reported, never silently
+ * absorbed):
+ *   - never beyond the mechanical stroke (the kinematic stroke plus an overtravel at each end,
+ *     where the limit switches sit: a low switch is pressed for s < s_min, a high one for s > s_max);
+ *   - no step while the drives are disabled; steps of one axis at least min_interval ticks apart
+ *     and at least dir_setup ticks after a direction change;
+ *   - slide speed, from the spacing of consecutive steps, within the limit (one tick of jitter
+ *     allowed); slide acceleration, the second difference of the position over 10 ms taken every
+ *     millisecond (the planner's measure), within the limit (two steps of quantisation allowed),
+ *     judged only while the drives are on (an e-stop stops dead by design). */
+#ifndef HAL_POSIX_PLANT_H
+#define HAL_POSIX_PLANT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "hal/inputs.h"
+#include "hal/stepper.h"
+#include "tse/geometry.h"
+
+#define PLANT_OVERTRAVEL 0.010 /* m beyond each end of the kinematic stroke */
+
+typedef enum {
+    PLANT_OK = 0,
+    PLANT_BEYOND_STROKE = 1u << 0,
+    PLANT_STEP_DISABLED = 1u << 1,
+    PLANT_PULSE_SPACING = 1u << 2,
+    PLANT_DIR_SETUP = 1u << 3,
+    PLANT_OVERSPEED = 1u << 4,
+    PLANT_OVERACCEL = 1u << 5,
+} plant_breach;
+
+typedef struct {
+    double steps_per_m;
+    double vmax, amax;        /* slide limits [m/s, m/s^2] */
+    double tolerance;         /* relative margin on vmax, amax */
+    uint32_t step_hz;         /* step interrupt rate (the plant's clock) */
+    uint32_t min_interval;    /* ticks */
+    uint32_t dir_setup;       /* ticks */
+} plant_config;
+
+typedef struct {
+    plant_config cfg;
+    tse_geometry geom;
+    int64_t steps[6];         /* true slide positions, steps from s = 0 */
+    uint8_t forward;
+    bool enabled;
+    bool estop_open;
+    uint64_t tick;            /* step interrupts so far */
+    uint64_t last_step[6];    /* tick of each axis' latest step (0: none) */
+    uint64_t dir_change[6];   /* tick of each axis' latest direction change */
+    int64_t hist[20][6];      /* positions at the last 20 millisecond boundaries */
+    uint32_t ms;              /* millisecond boundaries passed */
+    uint32_t quiet_ms;        /* acceleration not judged (drives off, or just back on) */
+    uint32_t breaches;        /* plant_breach bits seen so far */
+    char first_breach[160];   /* what and where, for the log */
+    uint64_t pulses;
+    uint64_t last_pulse_tick; /* tick of the latest step of any axis */
+    double pose[6];           /* plate pose from forward kinematics */
+    bool pose_valid;
+} tse_plant;
+
+/* Slides start at `start` [m] (where the robot was at power-up). */
+void plant_init(tse_plant *p, const plant_config *cfg, const tse_geometry *g, const double start[6]);
+
+hal_stepper plant_stepper(tse_plant *p);
+hal_inputs plant_inputs(tse_plant *p);
+
+/* Advances the plant's clock by one step interrupt (call once per step tick, after it). */
+void plant_tick(tse_plant *p);
+
+/* True slide positions [m]. */
+void plant_slides(const tse_plant *p, double s[6]);
+
+/* Updates p->pose by forward kinematics from the true slides, seeded with the last pose. */
+bool plant_update_pose(tse_plant *p);
+
+#endif

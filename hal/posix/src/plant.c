@@ -1,0 +1,153 @@
+#include "hal_posix/plant.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "tse/fk.h"
+
+#define STRIDE_MS 10
+
+static void breach(tse_plant *p, plant_breach b, int axis, const char *what)
+{
+    if (!p->breaches)
+        snprintf(p->first_breach, sizeof p->first_breach, "%s on slide %d at t = %.6f s", what, axis + 1,
+                 (double)p->tick / p->cfg.step_hz);
+    p->breaches |= (uint32_t)b;
+}
+
+void plant_init(tse_plant *p, const plant_config *cfg, const tse_geometry *g, const double start[6])
+{
+    memset(p, 0, sizeof *p);
+    p->cfg = *cfg;
+    p->geom = *g;
+    for (int k = 0; k < 6; ++k)
+        p->steps[k] = llround(start[k] * cfg->steps_per_m);
+    for (int j = 0; j < 2 * STRIDE_MS; ++j)
+        for (int k = 0; k < 6; ++k)
+            p->hist[j][k] = p->steps[k];
+    p->forward = 0x3F;
+    for (int k = 0; k < 6; ++k)
+        p->pose[k] = g->home_pose[k];
+}
+
+static void set_dir(void *ctx, uint8_t mask)
+{
+    tse_plant *p = ctx;
+    for (int k = 0; k < 6; ++k)
+        if (((mask ^ p->forward) >> k) & 1u)
+            p->dir_change[k] = p->tick;
+    p->forward = mask;
+}
+
+static void pulse(void *ctx, uint8_t mask)
+{
+    tse_plant *p = ctx;
+    const double spm = p->cfg.steps_per_m;
+    for (int k = 0; k < 6; ++k) {
+        if (!((mask >> k) & 1u))
+            continue;
+        ++p->pulses;
+        p->last_pulse_tick = p->tick;
+        if (!p->enabled)
+            breach(p, PLANT_STEP_DISABLED, k, "step with the drives disabled");
+        if (p->last_step[k] && p->tick - p->last_step[k] < p->cfg.min_interval)
+            breach(p, PLANT_PULSE_SPACING, k, "steps closer than the minimum interval");
+        if (p->dir_change[k] && p->tick - p->dir_change[k] < p->cfg.dir_setup)
+            breach(p, PLANT_DIR_SETUP, k, "step within the direction set-up time");
+        /* Speed from the spacing of two steps, allowing one tick of jitter. */
+        if (p->last_step[k]) {
+            const double dt = (double)(p->tick - p->last_step[k] + 1u) / p->cfg.step_hz;
+            if (1.0 / (spm * dt) > p->cfg.vmax * (1.0 + p->cfg.tolerance))
+                breach(p, PLANT_OVERSPEED, k, "slide faster than its limit");
+        }
+        p->last_step[k] = p->tick;
+        const int dir = ((p->forward >> k) & 1u) ? 1 : -1;
+        p->steps[k] += dir;
+        const double s = (double)p->steps[k] / spm;
+        if (s < p->geom.p.s_min - PLANT_OVERTRAVEL || s > p->geom.p.s_max + PLANT_OVERTRAVEL)
+            breach(p, PLANT_BEYOND_STROKE, k, "slide beyond the mechanical stroke");
+    }
+}
+
+static void enable(void *ctx, bool on)
+{
+    ((tse_plant *)ctx)->enabled = on;
+}
+
+static uint16_t limits(void *ctx)
+{
+    const tse_plant *p = ctx;
+    uint16_t m = 0;
+    for (int k = 0; k < 6; ++k) {
+        const double s = (double)p->steps[k] / p->cfg.steps_per_m;
+        if (s < p->geom.p.s_min) /* released exactly at s_min: the firmware's zero */
+            m |= (uint16_t)(1u << k);
+        if (s > p->geom.p.s_max)
+            m |= (uint16_t)(1u << (8 + k));
+    }
+    return m;
+}
+
+static bool estop(void *ctx)
+{
+    return ((tse_plant *)ctx)->estop_open;
+}
+
+hal_stepper plant_stepper(tse_plant *p)
+{
+    return (hal_stepper){p, set_dir, pulse, enable};
+}
+
+hal_inputs plant_inputs(tse_plant *p)
+{
+    return (hal_inputs){p, limits, estop};
+}
+
+void plant_tick(tse_plant *p)
+{
+    ++p->tick;
+    const uint64_t per_ms = p->cfg.step_hz / 1000u;
+    if (p->tick % per_ms != 0)
+        return;
+    /* (s_k - 2 s_{k-10} + s_{k-20}) / (10 ms)^2 at every millisecond; one step of quantisation at
+     * each of the three positions is allowed for. */
+    const double spm = p->cfg.steps_per_m, span = STRIDE_MS * 1e-3;
+    int64_t *old2 = p->hist[p->ms % (2 * STRIDE_MS)];
+    const int64_t *old1 = p->hist[(p->ms + STRIDE_MS) % (2 * STRIDE_MS)];
+    const double slack = 4.0 / (spm * span * span);
+    /* With the drives off (an e-stop cuts them at once, by design) there is no commanded motion to
+     * judge, and the measure spans 20 ms after it. */
+    if (!p->enabled)
+        p->quiet_ms = 2 * STRIDE_MS;
+    const int judge = p->quiet_ms == 0;
+    if (p->quiet_ms > 0)
+        --p->quiet_ms;
+    for (int k = 0; k < 6; ++k) {
+        const double a = (double)(p->steps[k] - 2 * old1[k] + old2[k]) / (spm * span * span);
+        if (judge && fabs(a) > p->cfg.amax * (1.0 + p->cfg.tolerance) + slack)
+            breach(p, PLANT_OVERACCEL, k, "slide accelerating beyond its limit");
+        old2[k] = p->steps[k];
+    }
+    ++p->ms;
+}
+
+void plant_slides(const tse_plant *p, double s[6])
+{
+    for (int k = 0; k < 6; ++k)
+        s[k] = (double)p->steps[k] / p->cfg.steps_per_m;
+}
+
+bool plant_update_pose(tse_plant *p)
+{
+    double q[6];
+    plant_slides(p, q);
+    tse_fk_result f;
+    if (tse_fk(&p->geom, q, p->pose_valid ? p->pose : p->geom.home_pose, &f) != TSE_OK) {
+        p->pose_valid = false;
+        return false;
+    }
+    memcpy(p->pose, f.pose, sizeof p->pose);
+    p->pose_valid = true;
+    return true;
+}
