@@ -11,6 +11,7 @@ packages=(
   python3 python3-mpmath            # the independent high-precision oracle
   python3-numpy python3-scipy       # the fsolve baseline of the benchmark
   python3-canmatrix python3-can     # third-party decoders that check the DBC
+  qemu-system-x86 busybox-static cpio can-utils   # the vcan harness (a VM where the kernel has no CAN)
 )
 
 missing=()
