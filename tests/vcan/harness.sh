@@ -26,8 +26,13 @@ fi
 
 echo "harness: no vcan on this kernel; booting a Debian kernel under QEMU (TCG)"
 # The kernel: the version Debian's linux-image-amd64 depends on, unpacked once into $work.
-kpkg=$(apt-cache depends linux-image-amd64 2>/dev/null | awk '/Depends: linux-image-[0-9]/{print $2; exit}')
-if [ -z "$kpkg" ]; then echo "harness: cannot resolve linux-image-amd64 (run scripts/setup.sh)"; exit 1; fi
+resolve() { apt-cache depends linux-image-amd64 2>/dev/null | awk '/Depends: linux-image-[0-9]/{print $2; exit}'; }
+kpkg=$(resolve)
+if [ -z "$kpkg" ] && [ "$(id -u)" -eq 0 ]; then
+  apt-get update -qq >/dev/null 2>&1 # package lists never fetched on this machine
+  kpkg=$(resolve)
+fi
+if [ -z "$kpkg" ]; then echo "harness: cannot resolve linux-image-amd64 (run scripts/setup.sh as root)"; exit 1; fi
 kdir="$work/$kpkg"
 if [ ! -d "$kdir" ]; then
   (cd "$work" && apt-get download "$kpkg" >/dev/null 2>&1) ||
