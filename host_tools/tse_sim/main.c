@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "fw/controller.h"
 #include "hal_posix/plant.h"
@@ -34,8 +35,12 @@ typedef struct {
     fw_state last_state;
     fw_fault last_fault;
     uint32_t reported;
-    uint64_t ticks;
+    uint64_t pulses_at_start; /* plant pulses when motion was last accepted */
+    bool awaiting_first_step;
+    uint64_t accepted_tick;   /* plant tick at which motion was accepted */
+    uint64_t estop_tick;      /* plant tick at which the e-stop was taken (0: none) */
 } sim;
+
 
 static const char *name_of(const proto_enum_entry *t, int v)
 {
@@ -59,7 +64,28 @@ static void control(void *arg)
         s->reported = s->plant.breaches;
         fw_report_fault(&s->fw, FW_FAULT_PLANT);
     }
+    if (s->awaiting_first_step && s->plant.first_after_mark) {
+        printf("tse-sim: first step %.3f ms after the command was taken\n",
+               (double)(s->plant.first_after_mark - s->accepted_tick) * 1e3 / STEP_HZ);
+        s->awaiting_first_step = false;
+    }
+    if (s->estop_tick && s->plant.last_pulse_tick > s->estop_tick) {
+        printf("tse-sim: a step %.3f ms after the e-stop\n", (double)(s->plant.last_pulse_tick - s->estop_tick) * 1e3 / STEP_HZ);
+        s->estop_tick = s->plant.last_pulse_tick;
+    }
     if (s->fw.state != s->last_state || s->fw.fault != s->last_fault) {
+        if (s->fw.state == FW_STATE_MOVING || s->fw.state == FW_STATE_HOMING) {
+            s->pulses_at_start = s->plant.pulses;
+            s->awaiting_first_step = true;
+            s->accepted_tick = s->plant.tick;
+            plant_mark(&s->plant);
+            printf("tse-sim: motion accepted at t = %.3f s\n", (double)s->plant.tick / STEP_HZ);
+        }
+        if (s->fw.state == FW_STATE_ESTOP && s->last_state != FW_STATE_ESTOP) {
+            s->estop_tick = s->plant.tick;
+            printf("tse-sim: e-stop taken; the last step was %.3f ms before it\n",
+                   (double)(s->plant.tick - s->plant.last_pulse_tick) * 1e3 / STEP_HZ);
+        }
         printf("tse-sim: state %s, fault %s\n", name_of(proto_state_names, s->fw.state),
                name_of(proto_fault_names, s->fw.fault));
         if (s->fw.state == FW_STATE_IDLE && s->fw.homed)

@@ -12,6 +12,7 @@ scenario=$1
 work=$2
 shift 2
 mkdir -p "$work"
+work=$(readlink -f "$work")
 
 if [ "$(id -u)" -eq 0 ] && ip link add dev vcan0 type vcan 2>/dev/null; then
   ip link set vcan0 up

@@ -49,6 +49,8 @@ static void pulse(void *ctx, uint8_t mask)
             continue;
         ++p->pulses;
         p->last_pulse_tick = p->tick;
+        if (!p->first_after_mark && p->tick >= p->mark_tick)
+            p->first_after_mark = p->tick ? p->tick : 1;
         if (!p->enabled)
             breach(p, PLANT_STEP_DISABLED, k, "step with the drives disabled");
         if (p->last_step[k] && p->tick - p->last_step[k] < p->cfg.min_interval)
@@ -130,6 +132,12 @@ void plant_tick(tse_plant *p)
         old2[k] = p->steps[k];
     }
     ++p->ms;
+}
+
+void plant_mark(tse_plant *p)
+{
+    p->mark_tick = p->tick;
+    p->first_after_mark = 0;
 }
 
 void plant_slides(const tse_plant *p, double s[6])

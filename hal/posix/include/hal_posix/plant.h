@@ -58,6 +58,8 @@ typedef struct {
     char first_breach[160];   /* what and where, for the log */
     uint64_t pulses;
     uint64_t last_pulse_tick; /* tick of the latest step of any axis */
+    uint64_t mark_tick;       /* plant_mark(): the tick marked */
+    uint64_t first_after_mark;/* tick of the first step since the mark (0: none yet) */
     double pose[6];           /* plate pose from forward kinematics */
     bool pose_valid;
 } tse_plant;
@@ -70,6 +72,9 @@ hal_inputs plant_inputs(tse_plant *p);
 
 /* Advances the plant's clock by one step interrupt (call once per step tick, after it). */
 void plant_tick(tse_plant *p);
+
+/* Marks the current tick; p->first_after_mark then records the first step after it (latency). */
+void plant_mark(tse_plant *p);
 
 /* True slide positions [m]. */
 void plant_slides(const tse_plant *p, double s[6]);

@@ -1,0 +1,117 @@
+#define _GNU_SOURCE
+#include "link.h"
+
+#include <errno.h>
+#include <linux/can.h>
+#include <linux/can/raw.h>
+#include <net/if.h>
+#include <poll.h>
+#include <string.h>
+#include <sys/ioctl.h>
+#include <sys/socket.h>
+#include <time.h>
+#include <unistd.h>
+
+uint64_t link_now_us(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
+}
+
+int link_open(tlink *l, const char *iface, uint8_t node)
+{
+    memset(l, 0, sizeof *l);
+    l->node = node;
+    l->fd = socket(PF_CAN, SOCK_RAW, CAN_RAW);
+    if (l->fd < 0)
+        return -1;
+    struct ifreq ifr;
+    memset(&ifr, 0, sizeof ifr);
+    strncpy(ifr.ifr_name, iface, IFNAMSIZ - 1);
+    struct sockaddr_can addr;
+    memset(&addr, 0, sizeof addr);
+    addr.can_family = AF_CAN;
+    if (ioctl(l->fd, SIOCGIFINDEX, &ifr) < 0)
+        goto fail;
+    addr.can_ifindex = ifr.ifr_ifindex;
+    /* Only the node's frames (any function, low four bits = node). */
+    struct can_filter f = {node, CAN_EFF_FLAG | CAN_RTR_FLAG | 0x00F};
+    if (setsockopt(l->fd, SOL_CAN_RAW, CAN_RAW_FILTER, &f, sizeof f) < 0 ||
+        bind(l->fd, (struct sockaddr *)&addr, sizeof addr) < 0)
+        goto fail;
+    return 0;
+fail:;
+    const int e = errno;
+    close(l->fd);
+    l->fd = -1;
+    errno = e;
+    return -1;
+}
+
+void link_close(tlink *l)
+{
+    if (l->fd >= 0)
+        close(l->fd);
+    l->fd = -1;
+}
+
+int link_send(tlink *l, proto_msg msg, const int32_t *values)
+{
+    proto_message m;
+    memset(&m, 0, sizeof m);
+    m.msg = msg;
+    m.node = l->node;
+    for (int i = 0; i < proto_table[msg].nfields; ++i)
+        m.v[i] = values[i];
+    hal_can_frame f;
+    if (proto_encode(&m, &f) != 0)
+        return -1;
+    struct can_frame fr;
+    memset(&fr, 0, sizeof fr);
+    fr.can_id = f.id;
+    fr.can_dlc = f.len;
+    memcpy(fr.data, f.data, f.len);
+    return write(l->fd, &fr, sizeof fr) == (ssize_t)sizeof fr ? 0 : -1;
+}
+
+static void heartbeat(tlink *l)
+{
+    const uint64_t now = link_now_us();
+    if (!l->heartbeat || now < l->next_heartbeat_us)
+        return;
+    const int32_t v[1] = {l->hb_counter++};
+    link_send(l, PM_HOST_HEARTBEAT, v);
+    l->next_heartbeat_us = now + 100000u;
+}
+
+int link_recv(tlink *l, proto_message *m, int timeout_ms)
+{
+    const uint64_t end = link_now_us() + (uint64_t)timeout_ms * 1000u;
+    for (;;) {
+        heartbeat(l);
+        const uint64_t now = link_now_us();
+        if (now >= end)
+            return 0;
+        uint64_t wait = (end - now) / 1000u;
+        if (l->heartbeat && wait > 50)
+            wait = 50;
+        struct pollfd p = {l->fd, POLLIN, 0};
+        const int r = poll(&p, 1, (int)wait + 1);
+        if (r < 0)
+            return errno == EINTR ? 0 : -1;
+        if (r == 0)
+            continue;
+        struct can_frame fr;
+        if (read(l->fd, &fr, sizeof fr) != (ssize_t)sizeof fr)
+            continue;
+        if (fr.can_id & (CAN_EFF_FLAG | CAN_RTR_FLAG | CAN_ERR_FLAG))
+            continue;
+        hal_can_frame f;
+        f.id = (uint16_t)(fr.can_id & CAN_SFF_MASK);
+        f.len = fr.can_dlc;
+        memcpy(f.data, fr.data, 8);
+        if (proto_decode(&f, PROTO_TO_HOST, m).reason == FW_REASON_NONE && m->node == l->node)
+            return 1;
+    }
+}

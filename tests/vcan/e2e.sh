@@ -1,0 +1,81 @@
+# The system as a user drives it: tse-sim on the bus, tsectl in front of it, can-utils watching.
+# Prints checks and figures, then the candump log between markers for the host to decode.
+pass=0
+fail=0
+check() { if eval "$2"; then pass=$((pass + 1)); echo "ok: $1"; else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
+T="tsectl --iface vcan0 --node 1 --timeout 5000"
+
+candump -L vcan0 >dump.log &
+dump=$!
+tse-sim --iface vcan0 --node 1 >sim.log 2>&1 &
+sim=$!
+sleep 0.5
+tsectl --iface vcan0 --node 1 heartbeat &
+hb=$!
+
+$T enable >out.txt 2>&1; check "enable acknowledged" "[ $? -eq 0 ]"
+$T home --wait >out.txt 2>&1; rc=$?; check "homing ends at rest" "[ $rc -eq 0 ]"
+
+# Each target: the plate pose from the plant's forward kinematics within 10 um and 1e-5 rad.
+near() { # x y z r p y: the last 'at rest' pose of the simulator against the target
+  grep 'at rest: plate' sim.log | tail -1 | awk -v x="$1" -v y="$2" -v z="$3" -v r="$4" -v p="$5" -v w="$6" '
+    function a(v) { return v < 0 ? -v : v }
+    { e = a($5 - x); if (a($6 - y) > e) e = a($6 - y); if (a($7 - z) > e) e = a($7 - z);
+      f = a($9 - r); if (a($10 - p) > f) f = a($10 - p); if (a($11 - w) > f) f = a($11 - w);
+      printf "pose error %.2f um, %.2f urad\n", e * 1e6, f * 1e6 > "/dev/stderr"; exit !(e <= 10e-6 && f <= 1e-5) }'
+}
+for t in "0.1 -0.05 1.1 0.1 -0.05 0.2" "-0.15 0.1 0.7 -0.05 0.08 -0.3" "0.0 0.0 1.45 0.0 0.0 0.0"; do
+  $T move $t --duration 1 --wait >out.txt 2>&1; rc=$?
+  check "move to $t" "[ $rc -eq 0 ] && near $t"
+done
+
+# Unreachable: refused with its reason, and nothing moves.
+before=$(grep -c 'motion accepted' sim.log)
+$T move 0.8 0 1.0 0 0 0 >out.txt 2>&1; rc=$?
+check "unreachable pose rejected (exit 3, reason kinematics)" "[ $rc -eq 3 ] && grep -q 'kinematics' out.txt"
+check "no motion for the rejected pose" "[ $(grep -c 'motion accepted' sim.log) -eq $before ]"
+
+# A trajectory: 3 cm and 2 cm along X and Y in 3 s with minimum-jerk easing, streamed with flow
+# control (busybox awk has no sine: a polynomial path).
+awk 'BEGIN { print "t,x,y,z,roll,pitch,yaw"; n = 150; for (i = 1; i <= n; ++i) { s = i / n; e = s*s*s*(10 - 15*s + 6*s*s);
+      printf "%.3f,%.6f,%.6f,1.45,0,0,0\n", 1.0 + 0.02 * i, 0.03 * e, 0.02 * e } }' >traj.csv
+t0=$(date +%s)
+$T trajectory traj.csv >traj_out.txt 2>&1; rc=$?
+t1=$(date +%s)
+check "trajectory streamed and finished at rest" "[ $rc -eq 0 ]"
+check "trajectory ends on its last point" "near 0.03 0.02 1.45 0 0 0"
+
+# E-stop during a move: stepping ends within one control tick (1 ms).
+$T move 0 0 1.0 0 0 0 --duration 3 >out.txt 2>&1
+sleep 1
+$T estop >out.txt 2>&1; rc=$?
+sleep 0.3
+check "e-stop acknowledged" "[ $rc -eq 0 ]"
+check "stepping ended within one control tick of the e-stop" \
+  "grep 'e-stop taken' sim.log | tail -1 | awk '{ exit !(\$(NF-3) <= 1.0) }' && ! grep -q 'step .* after the e-stop' sim.log"
+
+# Host silence during a move: a controlled stop and a latched watchdog fault.
+$T clear >/dev/null 2>&1; $T enable >/dev/null 2>&1; $T home --wait >/dev/null 2>&1
+$T move 0.05 0 1.2 0 0 0 --duration 3 >out.txt 2>&1
+sleep 0.5
+kill $hb
+sleep 2
+check "host heartbeat lost: watchdog fault latched" "grep -q 'fault watchdog' sim.log"
+check "the plant saw no physical breach all along" "! grep -q 'plant:' sim.log"
+
+kill -INT $sim
+sleep 0.5
+kill $dump
+
+# Figures.
+echo "figure: command taken to first step, per motion in order (homing, moves, trajectory; simulated time, ms): $(awk '/first step/ { printf "%s ", $4 }' sim.log)"
+echo "figure: $(grep 'e-stop taken' sim.log | tail -1 | sed 's/tse-sim: //')"
+awk '/ 201#/ { n++; t = substr($1, 2, length($1) - 2); if (!f) f = t; l = t } END { if (l > f) printf "figure: telemetry: %.1f STATUS frames per second\n", (n - 1) / (l - f) }' dump.log
+awk -v a="$t0" -v b="$t1" '{ t = substr($1, 2, length($1) - 2); if (t >= a && t <= b) { split($3, f, "#"); bits += 47 + 4 * length(f[2]) + 20 } }
+   END { if (b > a) printf "figure: bus load while streaming %.1f%% of 500 kbit/s (%d s)\n", bits / (b - a) / 5000, b - a }' dump.log
+echo "figure: $(tail -1 sim.log)"
+echo "=== dump begin"
+cat dump.log
+echo "=== dump end"
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
