@@ -78,10 +78,17 @@ chmod +x "$root/init"
 (cd "$root" && find . | cpio -o -H newc 2>/dev/null | gzip >"$work/initrd.gz")
 
 t0=$(date +%s.%N)
-timeout 600 qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$vmlinuz" \
-  -initrd "$work/initrd.gz" -append "console=ttyS0 quiet panic=-1" >"$work/console.log" 2>&1
+if [ -n "${HARNESS_LIVE:-}" ]; then
+  # Live: the scenario's output as it happens (progress bars included).
+  timeout 600 qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$vmlinuz" \
+    -initrd "$work/initrd.gz" -append "console=ttyS0 quiet panic=-1" 2>&1 | tee "$work/console.log" |
+    sed -u -n '/=== scenario begin/,/=== scenario end/{/=== scenario/d;p}'
+else
+  timeout 600 qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$vmlinuz" \
+    -initrd "$work/initrd.gz" -append "console=ttyS0 quiet panic=-1" >"$work/console.log" 2>&1
+fi
 t1=$(date +%s.%N)
-sed -n '/=== scenario begin/,/=== scenario end/p' "$work/console.log" | sed '1d;$d' | tr -d '\r'
+[ -n "${HARNESS_LIVE:-}" ] || sed -n '/=== scenario begin/,/=== scenario end/p' "$work/console.log" | sed '1d;$d' | tr -d '\r'
 rc=$(sed -n 's/.*=== scenario end \([0-9]*\).*/\1/p' "$work/console.log" | tr -d '\r')
 echo "harness: VM boot to power-off $(echo "$t1 - $t0" | bc 2>/dev/null || awk "BEGIN{print $t1 - $t0}") s"
 [ -n "$rc" ] || { echo "harness: the VM did not finish the scenario"; tail -20 "$work/console.log"; exit 1; }
