@@ -176,42 +176,59 @@ static int parse_number(const char *s, double *out)
     return *s && !*end && errno == 0 && isfinite(*out) ? 0 : -1;
 }
 
-static int cmd_move(tlink *l, int argc, char **argv)
+typedef struct {
+    double p[6];
+    int kind, wait;
+    int32_t raw; /* ms or um/s */
+} move_args;
+
+/* Checks a move's arguments; nothing is sent for a bad one. */
+static int parse_move(int argc, char **argv, move_args *a)
 {
-    double p[6], value = 2.0;
-    int kind = 0, wait = 0;
+    double value = 2.0;
+    a->kind = 0;
+    a->wait = 0;
     if (argc < 6)
         return usage_error("move needs X Y Z ROLL PITCH YAW", NULL);
     for (int i = 0; i < 6; ++i)
-        if (parse_number(argv[i], &p[i]) != 0)
+        if (parse_number(argv[i], &a->p[i]) != 0)
             return usage_error("not a number", argv[i]);
     for (int i = 6; i < argc; ++i) {
         if (!strcmp(argv[i], "--wait")) {
-            wait = 1;
+            a->wait = 1;
         } else if ((!strcmp(argv[i], "--duration") || !strcmp(argv[i], "--speed")) && i + 1 < argc) {
-            kind = argv[i][2] == 's';
+            a->kind = argv[i][2] == 's';
             if (parse_number(argv[++i], &value) != 0 || !(value > 0))
                 return usage_error("--duration and --speed take a positive number", argv[i]);
         } else {
             return usage_error("unexpected argument", argv[i]);
         }
     }
-    const int32_t raw = (int32_t)lround(kind ? value * 1e6 : value * 1e3);
+    const double raw = a->kind ? value * 1e6 : value * 1e3;
     if (raw < 1 || raw > 3600000)
         return usage_error("--duration must be 1 ms to 1 h, --speed 1 um/s to 3.6 m/s", NULL);
+    a->raw = (int32_t)lround(raw);
+    for (int i = 0; i < 6; ++i)
+        if (fabs(a->p[i]) > (i < 3 ? 4.0 : 3.141593))
+            return usage_error("a pose outside the wire's range (+-4 m, +-pi rad)", argv[i]);
+    return EXIT_OK;
+}
+
+static int cmd_move(tlink *l, const move_args *a)
+{
     const int seq = next_seq(l, NULL);
     if (seq < 0)
         return fprintf(stderr, "tsectl: no STATUS from node %u\n", l->node), EXIT_TIMEOUT;
-    const int32_t commit[3] = {seq, kind, raw};
-    if (stage(l, seq, p) != 0 || link_send(l, PM_MOVE_COMMIT, commit) != 0)
-        return fprintf(stderr, "tsectl: a pose outside the wire's range (+-4 m, +-pi) or a send error\n"), EXIT_USAGE;
+    const int32_t commit[3] = {seq, a->kind, a->raw};
+    if (stage(l, seq, a->p) != 0 || link_send(l, PM_MOVE_COMMIT, commit) != 0)
+        return perror("tsectl: send"), EXIT_BUS;
     proto_message ack;
     const int rc = wait_answer(l, function_of(PM_MOVE_COMMIT), seq, &ack);
     if (rc != EXIT_OK)
         return rc;
     const double T = ack.v[4] * 1e-3;
     printf("move accepted: %.3f s planned\n", T);
-    return wait ? wait_rest(l, T, "moving") : EXIT_OK;
+    return a->wait ? wait_rest(l, T, "moving") : EXIT_OK;
 }
 
 static int cmd_home(tlink *l, int argc, char **argv)
@@ -519,6 +536,12 @@ int main(int argc, char **argv)
         return usage_error("unknown command", cmd);
     if (!strcmp(cmd, "params") && nargs > 0 && !strcmp(args[0], "list"))
         return cmd_params(NULL, nargs, args);
+    move_args mv;
+    if (!strcmp(cmd, "move")) {
+        const int bad = parse_move(nargs, args, &mv);
+        if (bad != EXIT_OK)
+            return bad;
+    }
     if (!strcmp(cmd, "trajectory")) {
         /* A bad file is reported before the bus is touched. */
         int n;
@@ -557,7 +580,7 @@ int main(int argc, char **argv)
     } else if (!strcmp(cmd, "home"))
         rc = cmd_home(&l, nargs, args);
     else if (!strcmp(cmd, "move"))
-        rc = cmd_move(&l, nargs, args);
+        rc = cmd_move(&l, &mv);
     else if (!strcmp(cmd, "status"))
         rc = cmd_status(&l, nargs, args);
     else if (!strcmp(cmd, "watch"))

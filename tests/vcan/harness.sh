@@ -49,7 +49,7 @@ root="$work/root"
 rm -rf "$root"
 mkdir -p "$root"/{bin,proc,sys,dev,tmp,mods}
 cp /bin/busybox "$root/bin/"
-for a in sh mount insmod ip sleep cat echo poweroff ls grep kill pidof head tail wc sed awk date seq; do
+for a in sh mount insmod ip sleep cat echo poweroff ls grep kill pidof head tail wc sed awk date seq cut; do
   ln -sf busybox "$root/bin/$a"
 done
 cp "$mods/net/can/can.ko" "$mods/net/can/can-raw.ko" "$mods/drivers/net/can/dev/can-dev.ko" \
@@ -70,6 +70,7 @@ mount -t devtmpfs dev /dev
 for m in can can-dev can-raw vcan; do insmod /mods/$m.ko; done
 ip link add dev vcan0 type vcan && ip link set vcan0 up
 echo "=== scenario begin"
+echo "figure: VM boot, kernel start to scenario: $(cut -d' ' -f1 /proc/uptime) s"
 cd /tmp && sh /scenario.sh
 echo "=== scenario end $?"
 poweroff -f
