@@ -112,6 +112,19 @@ void fake_send(fake_hal *f, uint16_t id, uint8_t len, const uint8_t *data)
     ++f->rx_count;
 }
 
+void fake_send_msg(fake_hal *f, uint8_t node, proto_msg m, const int32_t *values)
+{
+    proto_message pm;
+    memset(&pm, 0, sizeof pm);
+    pm.msg = m;
+    pm.node = node;
+    for (int i = 0; i < proto_table[m].nfields; ++i)
+        pm.v[i] = values[i];
+    hal_can_frame fr;
+    if (proto_encode(&pm, &fr) == 0)
+        fake_send(f, fr.id, fr.len, fr.data);
+}
+
 void fake_run(fake_hal *f, fw_controller *c, uint32_t ms)
 {
     const uint32_t ticks = c->cfg.step_hz / c->cfg.segment_hz;

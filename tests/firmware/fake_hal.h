@@ -38,6 +38,9 @@ void fake_hal_init(fake_hal *f, fw_hal *hal);
 /* Queues a frame for the controller. */
 void fake_send(fake_hal *f, uint16_t id, uint8_t len, const uint8_t *data);
 
+/* Encodes a message to `node` and queues it for the controller (the values must be in range). */
+void fake_send_msg(fake_hal *f, uint8_t node, proto_msg m, const int32_t *values);
+
 /* Runs the controller for ms milliseconds of simulated time: every step tick, every control tick
  * and a poll per control tick. */
 void fake_run(fake_hal *f, fw_controller *c, uint32_t ms);

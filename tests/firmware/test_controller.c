@@ -30,14 +30,7 @@ static void start(void)
 
 static void send(proto_msg m, const int32_t *v)
 {
-    proto_message pm;
-    pm.msg = m;
-    pm.node = 1;
-    for (int i = 0; i < proto_table[m].nfields; ++i)
-        pm.v[i] = v[i];
-    hal_can_frame f;
-    assert_int_equal(proto_encode(&pm, &f), 0);
-    fake_send(&F, f.id, f.len, f.data);
+    fake_send_msg(&F, 1, m, v);
 }
 
 static void cmd(proto_msg m)

@@ -66,12 +66,7 @@ static void random_frame(void)
 
 static void send(proto_msg m, const int32_t *v)
 {
-    proto_message pm = {m, 1, {0}};
-    for (int i = 0; i < proto_table[m].nfields; ++i)
-        pm.v[i] = v[i];
-    hal_can_frame f;
-    if (proto_encode(&pm, &f) == 0)
-        fake_send(&F, f.id, f.len, f.data);
+    fake_send_msg(&F, 1, m, v);
 }
 
 /* A quiet spell of a well-behaved host: recover, home, start a move, so that the next burst of
