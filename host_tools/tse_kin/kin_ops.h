@@ -1,37 +1,67 @@
-/* The kinematics library behind one precision-neutral interface (double in, double out).
- * kin_ops.c is compiled once per precision and exports kin_ops_double and kin_ops_float, so
- * tse-kin can offer --precision without duplicating any command. */
+/* The kinematics library behind one precision-neutral interface: doubles in, doubles out.
+ *
+ * Promise: kin_ops.c and kin_bench.c are compiled once per precision (TSE_REAL_FLOAT 0 and 1) and
+ * each copy exports its own table, kin_ops_double or kin_ops_float, which calls the library build
+ * of that precision (tse_kin_d or tse_kin_f).  Inputs are rounded to the build's precision on the
+ * way in and results widened on the way out; nothing else is added, so what the commands print is
+ * the library's answer.  No global state: a kin_ctx holds one validated design. */
 #ifndef TSE_KIN_OPS_H
 #define TSE_KIN_OPS_H
 
 #include "params_file.h"
+#include "tse/status.h"
 
 typedef struct kin_ctx kin_ctx;
 
 typedef struct {
-    double ik_cold_ns, ik_warm_ns;       /* median ns per 6-DOF inverse kinematics */
-    double iter_cold_mean, iter_warm_mean;
-    int iter_cold_max, iter_warm_max;
+    tse_status status;
+    int scissor;     /* first failing scissor, 0 when ok */
+    double q[6];     /* as the library returned them (NaN where it found no solution) */
+    int iterations;
+    int fallbacks;
+} kin_ik_out;
+
+typedef struct {
+    tse_status status;
+    int scissor;     /* failing scissor of the inverse-kinematics check, 0 when ok */
+    double pose[6];  /* NaN unless status is ok: fk never claims a pose it could not verify */
+    int iterations;
+} kin_fk_out;
+
+typedef struct {
+    tse_status status; /* of the inverse kinematics from home, then of tse_jacobian */
+    int scissor;
+    double J[6][6];    /* dq/dp: rows s_a1..s_b3, columns x, y, z, roll, pitch, yaw */
+    double sv[6];      /* singular values of dp/dq, descending */
+} kin_jacobian_out;
+
+/* Timings of one precision on one trajectory (see kin_bench.c). */
+typedef struct {
+    double ik_cold_ns, ik_warm_ns, fk_ns; /* median over batches of the mean ns per pose */
+    double iter_cold_mean, iter_warm_mean, iter_fk_mean;
+    int iter_cold_max, iter_warm_max, iter_fk_max;
     long fallbacks_cold, fallbacks_warm;
-    double fk_ns;                        /* median ns per forward kinematics, warm */
-    int failures;                        /* poses of the trajectory that were not ok */
+    long not_ok_ik, not_ok_fk;            /* trajectory poses that did not come back ok */
 } kin_bench_result;
 
 typedef struct {
-    const char *name;
-    kin_ctx *(*create)(const kin_param_values *p); /* NULL for an invalid set */
+    const char *name; /* "double" or "float" */
+    /* NULL when this build rejects the set (then *bad names the parameter) or memory runs out
+     * (then *bad is TSE_PARAM_OK). */
+    kin_ctx *(*create)(const kin_param_values *p, tse_param_id *bad);
     void (*destroy)(kin_ctx *c);
-    /* Returns the status; q, mu, nu filled as the library reports them. */
-    int (*ik)(kin_ctx *c, const double pose[6], const double *seed, double q[6], int *scissor,
-              double mu[3], double *nu);
-    int (*fk)(kin_ctx *c, const double q[6], const double *seed, double pose[6], int *scissor);
-    /* dq/dp at the pose (solved from home) and the singular values of dp/dq, descending. */
-    int (*jacobian)(kin_ctx *c, const double pose[6], double J[36], double sv[6], int *scissor);
-    int (*sigma_z)(kin_ctx *c, double z, double *sigma);
-    int (*haf)(kin_ctx *c, double z, double *haf);
-    int (*workspace)(kin_ctx *c, int nr, int nphi, int nz, const double orient[3], long *reach, long *total);
-    /* Times the library on n poses of a smooth trajectory: batches, repeats, medians. */
-    void (*bench)(kin_ctx *c, const double (*poses)[6], int n, int repeats, kin_bench_result *out);
+    /* seed_q: previous solution, or NULL for home. */
+    tse_status (*ik)(const kin_ctx *c, const double pose[6], const double *seed_q, kin_ik_out *out);
+    /* seed_pose: previous pose, or NULL for home. */
+    tse_status (*fk)(const kin_ctx *c, const double q[6], const double *seed_pose, kin_fk_out *out);
+    /* dq/dp at the pose, its slides solved from home. */
+    tse_status (*jacobian)(const kin_ctx *c, const double pose[6], kin_jacobian_out *out);
+    tse_status (*sigma_z)(const kin_ctx *c, double z, double *sigma);
+    tse_status (*haf)(const kin_ctx *c, double z, double *haf);
+    tse_status (*workspace)(const kin_ctx *c, int n_r, int n_phi, int n_z, const double orientation[3],
+                            long *reachable, long *total);
+    /* Times ik cold, ik warm and fk on the n poses, `repeats` batches each. */
+    int (*bench)(const kin_ctx *c, const double (*poses)[6], int n, int repeats, kin_bench_result *out);
 } kin_ops;
 
 extern const kin_ops kin_ops_double;

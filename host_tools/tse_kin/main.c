@@ -1,407 +1,153 @@
 /* tse-kin: offline kinematics and design analysis of a TSE (kinematics.md).
  *
- * A contract scripts rely on: one output line per input line, numbers as %.17g, statuses by the
- * contract's names; exit 0 once the input is read to its end, 2 for a usage error, 1 for a file
- * that cannot be read or is not a valid parameter file. */
-#define _POSIX_C_SOURCE 200809L
-#include <math.h>
+ * Promise: dispatch only.  `tse-kin COMMAND [options]`; --help anywhere prints the usage to stdout
+ * and exits 0; a bad command line exits 2 with the reason on stderr; a parameter file that cannot
+ * be read or is invalid (in the chosen precision) exits 1 naming the file and line.  Everything
+ * else is the command's (commands.h). */
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
-#include "csv.h"
-#include "kin_ops.h"
-#include "params_file.h"
-#include "tse/status.h"
-
-#define EXIT_USAGE 2
-#define EXIT_FILE 1
-#define MAX_LINE 4096
+#include "commands.h"
 
 typedef struct {
-    const char *params_path;
-    const kin_ops *ops;
-    const char *grid;
-    const char *orientation;
-    const char *zs;
-    long n;
-} options;
+    const char *name;
+    const char *summary;
+    unsigned options;
+    int needs_design; /* whether main builds the design in the chosen precision */
+    int (*run)(const kin_run *run);
+    const char *help;
+} command;
 
-static const char *const usage_main =
-    "usage: tse-kin COMMAND [options]\n"
-    "\n"
-    "Offline kinematics of the Triple Scissor Extender (see kinematics.md).\n"
-    "\n"
-    "commands:\n"
-    "  ik          poses on stdin -> status,scissor,s_a1,s_b1,s_a2,s_b2,s_a3,s_b3\n"
-    "  fk          slides (and an optional seed pose) on stdin -> status,scissor,x,y,z,roll,pitch,yaw\n"
-    "  jacobian    poses on stdin -> status,scissor, dq/dp (36, row-major), singular values of dp/dq (6)\n"
-    "  haf         vertical gear ratio sigma_z and the Height Amplification Factor over Z\n"
-    "  workspace   reachable fraction of the paper's cylindrical grid\n"
-    "  bench       timing of the inverse and forward kinematics, float and double\n"
-    "\n"
-    "common options:\n"
-    "  --params FILE              parameter file (key = value; see 'tse-kin ik --help')\n"
-    "  --precision float|double   arithmetic of the library (default double)\n"
-    "  --help                     this text, or a command's own\n"
-    "\n"
-    "exit status: 0 input read to its end, 1 unreadable or invalid file, 2 usage error\n";
+static const command commands[] = {
+    {"ik", "poses -> status,scissor,s_a1,s_b1,s_a2,s_b2,s_a3,s_b3 (stdin to stdout)",
+     KIN_OPT_PARAMS | KIN_OPT_PRECISION, 1, cmd_ik, cmd_ik_help},
+    {"fk", "slides [+ seed pose] -> status,scissor,x,y,z,roll,pitch,yaw", KIN_OPT_PARAMS | KIN_OPT_PRECISION, 1,
+     cmd_fk, cmd_fk_help},
+    {"jacobian", "poses -> status,scissor, dq/dp (36), singular values of dp/dq (6)",
+     KIN_OPT_PARAMS | KIN_OPT_PRECISION, 1, cmd_jacobian, cmd_jacobian_help},
+    {"haf", "vertical gear ratio sigma_z and the Height Amplification Factor",
+     KIN_OPT_PARAMS | KIN_OPT_PRECISION | KIN_OPT_Z, 1, cmd_haf, cmd_haf_help},
+    {"workspace", "reachable fraction of the paper's cylindrical grid",
+     KIN_OPT_PARAMS | KIN_OPT_PRECISION | KIN_OPT_GRID | KIN_OPT_ORIENTATION, 1, cmd_workspace,
+     cmd_workspace_help},
+    {"bench", "timing of inverse and forward kinematics, double and float", KIN_OPT_PARAMS | KIN_OPT_N, 0,
+     cmd_bench, cmd_bench_help},
+};
+enum { N_COMMANDS = (int)(sizeof commands / sizeof commands[0]) };
 
-static const char *const params_help =
-    "parameter file: 'key = value' lines, '#' starts a comment; keys L, k1, eta_deg, k3, k4,\n"
-    "alpha_min_deg, alpha_max_deg, s_min, s_max, mu_min, nu_min (SI units, angles in degrees);\n"
-    "missing keys take the prototype's values. An unknown key, a repeated key, a malformed value\n"
-    "or an invalid set is an error naming the line.\n";
-
-static void print_help(const char *cmd)
+static void print_usage(FILE *f)
 {
-    if (!cmd) {
-        fputs(usage_main, stdout);
-        return;
-    }
-    if (!strcmp(cmd, "ik"))
-        printf("usage: tse-kin ik [--params FILE] [--precision float|double]\n\n"
-               "Reads poses x,y,z,roll,pitch,yaw (metres, radians; R = Rz(yaw) Ry(pitch) Rx(roll)), one per\n"
-               "line, and writes one line per input line: status,scissor,s_a1,s_b1,s_a2,s_b2,s_a3,s_b3\n"
-               "(scissor 0 when ok, numbers %%.17g). Every line is solved from the home configuration, so\n"
-               "the output does not depend on the order of the lines. A malformed line (or a blank one)\n"
-               "gives 'invalid,0,nan,...' and the stream goes on.\n\n%s", params_help);
-    else if (!strcmp(cmd, "fk"))
-        printf("usage: tse-kin fk [--params FILE] [--precision float|double]\n\n"
-               "Reads s_a1,s_b1,s_a2,s_b2,s_a3,s_b3 (metres), optionally followed by a seed pose (six more\n"
-               "numbers; the home pose otherwise), and writes status,scissor,x,y,z,roll,pitch,yaw. The pose\n"
-               "is checked by the inverse kinematics: a status other than ok means no pose is claimed.\n\n%s",
-               params_help);
-    else if (!strcmp(cmd, "jacobian"))
-        printf("usage: tse-kin jacobian [--params FILE] [--precision float|double]\n\n"
-               "Reads poses like 'ik' and writes, per line: status,scissor, then the 36 entries of dq/dp\n"
-               "row by row (rows s_a1..s_b3; columns x,y,z,roll,pitch,yaw), then the 6 singular values\n"
-               "of dp/dq, largest first.\n\n%s", params_help);
-    else if (!strcmp(cmd, "haf"))
-        printf("usage: tse-kin haf [--params FILE] [--precision float|double] [--z Z1,Z2,...]\n\n"
-               "Prints z,sigma_z,sigma_z_k1_1,haf per height (default: 9 heights inside the alpha stops),\n"
-               "where sigma_z = 1/(sqrt(6)|ds/dZ|) at X = Y = 0, zero orientation, and HAF divides it by\n"
-               "the same design's with k1 = 1; then 'haf,mean,min,max,paper,11.487'.\n\n%s", params_help);
-    else if (!strcmp(cmd, "workspace"))
-        printf("usage: tse-kin workspace [--grid NR,NPHI,NZ] [--orientation R,P,Y] [--params FILE]\n"
-               "                         [--precision float|double]\n\n"
-               "Counts the reachable points of the grid r_i = (L/2) i/(NR-1), phi_j = 2 pi j/NPHI,\n"
-               "Z_k = L k/(NZ-1) at a fixed orientation (radians; default 0,0,0). Default grid 21,36,41.\n"
-               "The last line is reachable,total,fraction (the paper gives 0.28 for the prototype).\n\n%s",
-               params_help);
-    else if (!strcmp(cmd, "bench"))
-        printf("usage: tse-kin bench [--params FILE] [--n N]\n\n"
-               "Times the library on N poses (default 2000) of a smooth trajectory: median ns per 6-DOF\n"
-               "inverse kinematics cold (from home) and warm (seeded with the previous solution), Newton\n"
-               "iterations per pose (mean, max), and median ns per forward kinematics, for float and\n"
-               "double. Also prints 'bench,KEY,VALUE' lines for scripts.\n\n%s", params_help);
+    fputs("usage: tse-kin COMMAND [options]\n"
+          "       tse-kin COMMAND --help\n"
+          "\n"
+          "Offline kinematics of the Triple Scissor Extender (kinematics.md). Units: metres, radians.\n"
+          "\n"
+          "commands:\n",
+          f);
+    for (int i = 0; i < N_COMMANDS; ++i)
+        fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].summary);
+    fputs("\n"
+          "options (which command takes which: see its --help):\n"
+          "  --params FILE              design parameters (default: the paper's prototype)\n"
+          "  --precision float|double   library build to use (default double)\n"
+          "  --grid NR,NPHI,NZ          workspace grid (default 21,36,41)\n"
+          "  --orientation R,P,Y        workspace orientation (default 0,0,0)\n"
+          "  --z Z1,Z2,...              haf heights (default 9 inside the alpha stops)\n"
+          "  --n N                      bench trajectory length (default 2000)\n"
+          "  --help                     usage, of the tool or of a command\n"
+          "\n" KIN_HELP_ROWS "\n" KIN_HELP_PARAMS "\n" KIN_HELP_EXIT,
+          f);
 }
 
-static int usage_error(const char *fmt, const char *arg)
+static int usage_error(const char *cmd, const char *msg)
 {
-    fputs("tse-kin: ", stderr);
-    fprintf(stderr, fmt, arg);
-    fputs("\n(try 'tse-kin --help')\n", stderr);
-    return EXIT_USAGE;
+    fprintf(stderr, "tse-kin: %s\n", msg);
+    fprintf(stderr, "Try 'tse-kin %s--help'.\n", cmd ? cmd : "");
+    return KIN_EXIT_USAGE;
 }
 
-static void print_numbers(const double *v, int n)
+static const command *find_command(const char *name)
 {
-    for (int k = 0; k < n; ++k)
-        printf(",%.17g", v[k]);
+    for (int i = 0; i < N_COMMANDS; ++i)
+        if (!strcmp(commands[i].name, name))
+            return &commands[i];
+    return NULL;
 }
 
-static void print_nan(int n)
+static int is_help(const char *a)
 {
-    for (int k = 0; k < n; ++k)
-        fputs(",nan", stdout);
+    return !strcmp(a, "--help") || !strcmp(a, "-h");
 }
 
-/* Reads stdin line by line; a line longer than MAX_LINE is one malformed row. */
-static int next_line(char *buf, int *too_long)
+static int run_command(const command *c, int argc, char **argv)
 {
-    *too_long = 0;
-    if (!fgets(buf, MAX_LINE, stdin))
-        return 0;
-    if (!strchr(buf, '\n') && !feof(stdin)) {
-        int ch;
-        while ((ch = getchar()) != EOF && ch != '\n')
-            ;
-        *too_long = 1;
-    }
-    return 1;
-}
+    char msg[512], cmd_prefix[32];
+    snprintf(cmd_prefix, sizeof cmd_prefix, "%s ", c->name);
+    kin_options opt;
+    kin_options_default(&opt);
+    if (kin_options_parse(argc, argv, c->options, &opt, msg, sizeof msg) != 0)
+        return usage_error(cmd_prefix, msg);
 
-static int cmd_ik(const kin_ops *ops, kin_ctx *ctx, int jacobian)
-{
-    char line[MAX_LINE];
-    int too_long;
-    while (next_line(line, &too_long)) {
-        double pose[6];
-        const char *why = "";
-        const int n = too_long ? -1 : csv_parse_row(line, pose, 6, &why);
-        if (n != 6) {
-            printf("invalid,0");
-            print_nan(jacobian ? 42 : 6);
-            putchar('\n');
-            continue;
+    kin_param_values params;
+    kin_params_default(&params);
+    const char *params_name = "the default parameters";
+    if (opt.params_path) {
+        params_name = opt.params_path;
+        if (kin_params_load(opt.params_path, &params, msg, sizeof msg) != KIN_PARAMS_OK) {
+            fprintf(stderr, "tse-kin: %s\n", msg);
+            return KIN_EXIT_FILE;
         }
-        int scissor;
-        if (jacobian) {
-            double J[36], sv[6];
-            const int st = ops->jacobian(ctx, pose, J, sv, &scissor);
-            printf("%s,%d", tse_status_name((tse_status)st), scissor);
-            if (st == TSE_OK) {
-                print_numbers(J, 36);
-                print_numbers(sv, 6);
-            } else {
-                print_nan(42);
-            }
-        } else {
-            double q[6];
-            const int st = ops->ik(ctx, pose, NULL, q, &scissor, NULL, NULL);
-            printf("%s,%d", tse_status_name((tse_status)st), scissor);
-            print_numbers(q, 6);
+    }
+
+    kin_run run = {&opt, &params, params_name, opt.use_float ? &kin_ops_float : &kin_ops_double, NULL};
+    if (c->needs_design) {
+        tse_param_id bad;
+        run.ctx = run.ops->create(&params, &bad);
+        if (!run.ctx) {
+            char note[64];
+            snprintf(note, sizeof note, " in %s precision", run.ops->name);
+            kin_params_describe_invalid(&params, bad, params_name, note, msg, sizeof msg);
+            fprintf(stderr, "tse-kin: %s\n", msg);
+            return KIN_EXIT_FILE;
         }
-        putchar('\n');
     }
-    return ferror(stdin) ? EXIT_FILE : 0;
-}
-
-static int cmd_fk(const kin_ops *ops, kin_ctx *ctx)
-{
-    char line[MAX_LINE];
-    int too_long;
-    while (next_line(line, &too_long)) {
-        double v[12];
-        const char *why = "";
-        const int n = too_long ? -1 : csv_parse_row(line, v, 12, &why);
-        if (n != 6 && n != 12) {
-            printf("invalid,0");
-            print_nan(6);
-            putchar('\n');
-            continue;
-        }
-        double pose[6];
-        int scissor;
-        const int st = ops->fk(ctx, v, n == 12 ? v + 6 : NULL, pose, &scissor);
-        printf("%s,%d", tse_status_name((tse_status)st), st == TSE_OK ? 0 : scissor);
-        if (st == TSE_OK)
-            print_numbers(pose, 6);
-        else
-            print_nan(6); /* never a wrong pose */
-        putchar('\n');
-    }
-    return ferror(stdin) ? EXIT_FILE : 0;
-}
-
-static int parse_list(const char *s, double *out, int max)
-{
-    const char *why;
-    return csv_parse_row(s, out, max, &why);
-}
-
-static int cmd_haf(const kin_ops *ops, kin_ctx *ctx, const kin_param_values *p, const char *zs)
-{
-    double z[64];
-    int n = 0;
-    if (zs) {
-        n = parse_list(zs, z, 64);
-        if (n <= 0)
-            return usage_error("--z takes comma-separated heights, got '%s'", zs);
-    } else {
-        /* Nine heights inside the alpha stops, kept off the stops themselves. */
-        const double L = p->v[TSE_PARAM_L];
-        const double lo = L * sin(p->v[TSE_PARAM_ALPHA_MIN]), hi = L * sin(p->v[TSE_PARAM_ALPHA_MAX]);
-        for (n = 0; n < 9; ++n)
-            z[n] = lo + (hi - lo) * (0.05 + 0.9 * n / 8.0);
-    }
-    kin_param_values rigid = *p;
-    rigid.v[TSE_PARAM_K1] = 1.0;
-    kin_ctx *rctx = ops->create(&rigid);
-    if (!rctx) {
-        fprintf(stderr, "tse-kin: the design with k1 = 1 is not a valid parameter set\n");
-        return EXIT_FILE;
-    }
-    printf("# z_m,sigma_z,sigma_z_k1_1,haf\n");
-    double sum = 0, lo = INFINITY, hi = -INFINITY;
-    int ok = 0;
-    for (int i = 0; i < n; ++i) {
-        double s, sr, h;
-        const int st1 = ops->sigma_z(ctx, z[i], &s), st2 = ops->sigma_z(rctx, z[i], &sr), st3 = ops->haf(ctx, z[i], &h);
-        if (st1 || st2 || st3) {
-            printf("%.17g,nan,nan,nan\n", z[i]);
-            continue;
-        }
-        printf("%.17g,%.17g,%.17g,%.17g\n", z[i], s, sr, h);
-        sum += h;
-        lo = h < lo ? h : lo;
-        hi = h > hi ? h : hi;
-        ++ok;
-    }
-    ops->destroy(rctx);
-    if (ok == 0) {
-        printf("haf,nan,nan,nan,paper,11.487\n");
-        return 0;
-    }
-    printf("# HAF = sigma_z / sigma_z(k1 = 1): mean %.6f, min %.6f, max %.6f over %d heights; the paper gives 11.487\n",
-           sum / ok, lo, hi, ok);
-    printf("haf,%.17g,%.17g,%.17g,paper,11.487\n", sum / ok, lo, hi);
-    return 0;
-}
-
-static int cmd_workspace(const kin_ops *ops, kin_ctx *ctx, const char *grid, const char *orientation)
-{
-    double g[3] = {21, 36, 41}, o[3] = {0, 0, 0};
-    if (grid) {
-        if (parse_list(grid, g, 3) != 3)
-            return usage_error("--grid takes NR,NPHI,NZ, got '%s'", grid);
-        for (int k = 0; k < 3; ++k)
-            if (g[k] != floor(g[k]) || g[k] < (k == 1 ? 1 : 2) || g[k] > 100000)
-                return usage_error("--grid needs whole numbers NR >= 2, NPHI >= 1, NZ >= 2, got '%s'", grid);
-    }
-    if (orientation) {
-        if (parse_list(orientation, o, 3) != 3 || !isfinite(o[0]) || !isfinite(o[1]) || !isfinite(o[2]))
-            return usage_error("--orientation takes three finite angles R,P,Y in radians, got '%s'", orientation);
-    }
-    long reach = 0, total = 0;
-    ops->workspace(ctx, (int)g[0], (int)g[1], (int)g[2], o, &reach, &total);
-    printf("# grid %d x %d x %d (r, phi, Z), orientation %g,%g,%g rad, precision %s\n", (int)g[0], (int)g[1],
-           (int)g[2], o[0], o[1], o[2], ops->name);
-    printf("# the paper gives 0.28 for the prototype\n");
-    printf("%ld,%ld,%.6f\n", reach, total, total ? (double)reach / (double)total : 0.0);
-    return 0;
-}
-
-/* The bench trajectory: a slow Lissajous through the workspace with small rotations, sampled
- * every 2 ms of its parameter; bench/fsolve_baseline.py uses the same definition. */
-static void bench_trajectory(double (*p)[6], int n)
-{
-    for (int i = 0; i < n; ++i) {
-        const double t = 0.002 * i;
-        p[i][0] = 0.15 * sin(t);
-        p[i][1] = 0.12 * sin(1.7 * t);
-        p[i][2] = 1.0 + 0.3 * sin(0.5 * t);
-        p[i][3] = 0.08 * sin(1.3 * t);
-        p[i][4] = 0.06 * sin(0.9 * t);
-        p[i][5] = 0.2 * sin(0.7 * t);
-    }
-}
-
-static int cmd_bench(const kin_param_values *p, long n)
-{
-    double(*poses)[6] = malloc(sizeof(double[6]) * (size_t)n);
-    if (!poses)
-        return EXIT_FILE;
-    bench_trajectory(poses, (int)n);
-    const kin_ops *all[2] = {&kin_ops_double, &kin_ops_float};
-    printf("# %ld poses of a Lissajous trajectory, 31 repeats, median of the per-pose means\n", n);
-    for (int i = 0; i < 2; ++i) {
-        kin_ctx *ctx = all[i]->create(p);
-        if (!ctx) {
-            free(poses);
-            return EXIT_FILE;
-        }
-        kin_bench_result r;
-        all[i]->bench(ctx, (const double(*)[6])poses, (int)n, 31, &r);
-        all[i]->destroy(ctx);
-        const char *nm = all[i]->name;
-        printf("ik %-6s warm: median %8.1f ns/pose, Newton iterations mean %.2f max %d (3 scissors), fallbacks %ld\n",
-               nm, r.ik_warm_ns, r.iter_warm_mean, r.iter_warm_max, r.fallbacks_warm);
-        printf("ik %-6s cold: median %8.1f ns/pose, Newton iterations mean %.2f max %d (3 scissors), fallbacks %ld\n",
-               nm, r.ik_cold_ns, r.iter_cold_mean, r.iter_cold_max, r.fallbacks_cold);
-        printf("fk %-6s warm: median %8.1f ns/pose\n", nm, r.fk_ns);
-        if (r.failures)
-            printf("warning: %d poses of the trajectory were not ok in %s\n", r.failures, nm);
-        printf("bench,ik_%s_warm_ns,%.1f\nbench,ik_%s_cold_ns,%.1f\nbench,fk_%s_ns,%.1f\n", nm, r.ik_warm_ns, nm,
-               r.ik_cold_ns, nm, r.fk_ns);
-        printf("bench,ik_%s_warm_iter_mean,%.3f\nbench,ik_%s_warm_iter_max,%d\n", nm, r.iter_warm_mean, nm,
-               r.iter_warm_max);
-    }
-    free(poses);
-    return 0;
+    const int rc = c->run(&run);
+    if (run.ctx)
+        run.ops->destroy(run.ctx);
+    return rc;
 }
 
 int main(int argc, char **argv)
 {
-    if (argc < 2)
-        return usage_error("%s", "a command is needed");
-    const char *cmd = argv[1];
-    if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
-        print_help(NULL);
-        return 0;
+    if (argc < 2) {
+        print_usage(stderr);
+        return KIN_EXIT_USAGE;
     }
-    static const char *const commands[] = {"ik", "fk", "jacobian", "haf", "workspace", "bench"};
-    int known = 0;
-    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; ++i)
-        known |= !strcmp(cmd, commands[i]);
-    if (!known)
-        return usage_error("unknown command '%s'", cmd);
-
-    options o = {NULL, &kin_ops_double, NULL, NULL, NULL, 2000};
-    for (int i = 2; i < argc; ++i) {
-        const char *a = argv[i];
-        const int has_value = i + 1 < argc;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            print_help(cmd);
-            return 0;
-        } else if (!strcmp(a, "--params") && has_value) {
-            o.params_path = argv[++i];
-        } else if (!strcmp(a, "--precision") && has_value) {
-            const char *v = argv[++i];
-            if (!strcmp(v, "double"))
-                o.ops = &kin_ops_double;
-            else if (!strcmp(v, "float"))
-                o.ops = &kin_ops_float;
-            else
-                return usage_error("--precision takes float or double, got '%s'", v);
-        } else if (!strcmp(a, "--grid") && has_value && !strcmp(cmd, "workspace")) {
-            o.grid = argv[++i];
-        } else if (!strcmp(a, "--orientation") && has_value && !strcmp(cmd, "workspace")) {
-            o.orientation = argv[++i];
-        } else if (!strcmp(a, "--z") && has_value && !strcmp(cmd, "haf")) {
-            o.zs = argv[++i];
-        } else if (!strcmp(a, "--n") && has_value && !strcmp(cmd, "bench")) {
-            char *end;
-            o.n = strtol(argv[++i], &end, 10);
-            if (*end || o.n < 2 || o.n > 10000000)
-                return usage_error("--n takes a whole number from 2 to 10000000, got '%s'", argv[i]);
-        } else if (!strncmp(a, "--", 2) && !has_value && (!strcmp(a, "--params") || !strcmp(a, "--precision") ||
-                                                           !strcmp(a, "--grid") || !strcmp(a, "--orientation") ||
-                                                           !strcmp(a, "--z") || !strcmp(a, "--n"))) {
-            return usage_error("option %s needs a value", a);
-        } else {
-            return usage_error("unexpected argument '%s'", a);
+    const char *name = argv[1];
+    if (is_help(name) || !strcmp(name, "help")) {
+        /* `tse-kin help ik` too, since people type it. */
+        const command *c = argc > 2 && !strcmp(name, "help") ? find_command(argv[2]) : NULL;
+        if (argc > 2 && !strcmp(name, "help") && !c) {
+            char msg[256];
+            snprintf(msg, sizeof msg, "unknown command '%.60s'", argv[2]);
+            return usage_error(NULL, msg);
         }
+        fputs(c ? c->help : "", stdout);
+        if (!c)
+            print_usage(stdout);
+        return KIN_EXIT_OK;
     }
-
-    kin_param_values p;
-    kin_params_default(&p);
-    if (o.params_path) {
-        char err[512];
-        if (kin_params_load(o.params_path, &p, err, sizeof err) != 0) {
-            fprintf(stderr, "tse-kin: %s\n", err);
-            return EXIT_FILE;
+    const command *c = find_command(name);
+    if (!c) {
+        char msg[256];
+        snprintf(msg, sizeof msg, "unknown command '%.60s' (commands: ik, fk, jacobian, haf, workspace, bench)", name);
+        return usage_error(NULL, msg);
+    }
+    /* --help wins over anything else on the line, even a mistake. */
+    for (int i = 2; i < argc; ++i)
+        if (is_help(argv[i])) {
+            fputs(c->help, stdout);
+            return KIN_EXIT_OK;
         }
-    }
-    if (!strcmp(cmd, "bench"))
-        return cmd_bench(&p, o.n);
-    kin_ctx *ctx = o.ops->create(&p);
-    if (!ctx) {
-        fprintf(stderr, "tse-kin: invalid parameter set\n");
-        return EXIT_FILE;
-    }
-    int rc = 0;
-    if (!strcmp(cmd, "ik"))
-        rc = cmd_ik(o.ops, ctx, 0);
-    else if (!strcmp(cmd, "jacobian"))
-        rc = cmd_ik(o.ops, ctx, 1);
-    else if (!strcmp(cmd, "fk"))
-        rc = cmd_fk(o.ops, ctx);
-    else if (!strcmp(cmd, "haf"))
-        rc = cmd_haf(o.ops, ctx, &p, o.zs);
-    else
-        rc = cmd_workspace(o.ops, ctx, o.grid, o.orientation);
-    o.ops->destroy(ctx);
-    return rc;
+    return run_command(c, argc - 2, argv + 2);
 }

@@ -1,0 +1,147 @@
+/* `tse-kin haf` and `tse-kin workspace`: the paper's design figures, beside the paper's values.
+ *
+ * Promise: lines starting with '#' are commentary; every other line is CSV, and the last line is
+ * the summary a script reads (haf: "haf,mean,min,max,paper,11.487"; workspace:
+ * "reachable,total,fraction").  The figures are what the library computes, whatever the paper says. */
+#include <math.h>
+#include <stdio.h>
+
+#include "commands.h"
+#include "csv.h"
+
+/* The paper's figures for the prototype (kinematics.md, "Forward kinematics, Jacobian, metrics"). */
+#define PAPER_HAF "11.487"
+#define PAPER_WORKSPACE "0.28"
+
+/* Default heights: this many, spread over the alpha stops' heights, kept this fraction off each end
+ * (at the stops themselves the scissor is at a limit, not inside the workspace). */
+enum { HAF_DEFAULT_HEIGHTS = 9 };
+#define HAF_MARGIN 0.05
+
+const char cmd_haf_help[] =
+    "usage: tse-kin haf [--params FILE] [--precision float|double] [--z Z1,Z2,...]\n"
+    "\n"
+    "Vertical spatial gear ratio and Height Amplification Factor (kinematics.md). At each height Z\n"
+    "(metres; default: 9 heights spread over L sin(alpha_min) .. L sin(alpha_max), 5 % of the range\n"
+    "in from either stop) prints\n"
+    "  z,sigma_z,sigma_z_k1_1,haf\n"
+    "sigma_z = 1/(sqrt(6)|ds/dZ|) at X = Y = 0, zero orientation; sigma_z_k1_1 the same for the same\n"
+    "design with k1 = 1; haf = tse_haf, their ratio. A height without a branch solution gives nan.\n"
+    "Then a '#' line with mean, min and max HAF beside the paper's figure (paper: 11.487), and last\n"
+    "the line\n"
+    "  haf,MEAN,MIN,MAX,paper,11.487\n"
+    "(nan,nan,nan when no height had a value). Lines starting with '#' are comments.\n"
+    "\n" KIN_HELP_PARAMS "\n" KIN_HELP_EXIT;
+
+const char cmd_workspace_help[] =
+    "usage: tse-kin workspace [--grid NR,NPHI,NZ] [--orientation R,P,Y] [--params FILE]\n"
+    "                         [--precision float|double]\n"
+    "\n"
+    "Workspace percentage of the paper: counts the reachable points (status ok) of the cylindrical\n"
+    "grid r_i = (L/2) i/(NR-1), phi_j = 2 pi j/NPHI, Z_k = L k/(NZ-1) at the fixed orientation\n"
+    "R,P,Y (radians, default 0,0,0). Default grid 21,36,41 (30996 points). NR >= 2, NPHI >= 1,\n"
+    "NZ >= 2, whole numbers. Prints '#' lines describing the grid, then a '#' line naming the\n"
+    "columns beside the paper's figure (paper: 0.28 for the prototype), and last\n"
+    "  reachable,total,fraction\n"
+    "with the fraction as %.6f.\n"
+    "\n" KIN_HELP_PARAMS "\n" KIN_HELP_EXIT;
+
+static int finish(void)
+{
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "tse-kin: error writing the output\n");
+        return KIN_EXIT_FILE;
+    }
+    return KIN_EXIT_OK;
+}
+
+static int default_heights(const kin_param_values *p, double *z)
+{
+    const double L = p->v[TSE_PARAM_L];
+    const double lo = L * sin(p->v[TSE_PARAM_ALPHA_MIN]), hi = L * sin(p->v[TSE_PARAM_ALPHA_MAX]);
+    for (int i = 0; i < HAF_DEFAULT_HEIGHTS; ++i)
+        z[i] = lo + (hi - lo) * (HAF_MARGIN + (1.0 - 2.0 * HAF_MARGIN) * i / (HAF_DEFAULT_HEIGHTS - 1));
+    return HAF_DEFAULT_HEIGHTS;
+}
+
+int cmd_haf(const kin_run *run)
+{
+    double z[KIN_MAX_Z];
+    int n = run->opt->n_z;
+    if (n > 0) {
+        for (int i = 0; i < n; ++i)
+            z[i] = run->opt->z[i];
+    } else {
+        n = default_heights(run->params, z);
+    }
+
+    /* The reference design of the HAF: the same one with the lowest link as long as the scissor. */
+    kin_param_values rigid = *run->params;
+    rigid.v[TSE_PARAM_K1] = 1.0;
+    rigid.line[TSE_PARAM_K1] = 0;
+    tse_param_id bad;
+    kin_ctx *rctx = run->ops->create(&rigid, &bad);
+    if (!rctx) {
+        char err[512];
+        kin_params_describe_invalid(&rigid, bad, run->params_name, " for the same design with k1 = 1", err,
+                                    sizeof err);
+        fprintf(stderr, "tse-kin: %s\n", err);
+        return KIN_EXIT_FILE;
+    }
+
+    printf("# sigma_z = 1/(sqrt(6)|ds/dZ|) at X = Y = 0, zero orientation; HAF = sigma_z / sigma_z(k1 = 1); "
+           "precision %s\n",
+           run->ops->name);
+    printf("# z,sigma_z,sigma_z_k1_1,haf\n");
+    double sum = 0, lo = INFINITY, hi = -INFINITY;
+    int count = 0;
+    for (int i = 0; i < n; ++i) {
+        double v[4] = {z[i], NAN, NAN, NAN};
+        const tse_status s1 = run->ops->sigma_z(run->ctx, z[i], &v[1]);
+        const tse_status s2 = run->ops->sigma_z(rctx, z[i], &v[2]);
+        const tse_status s3 = run->ops->haf(run->ctx, z[i], &v[3]);
+        csv_put_number(stdout, v[0]);
+        csv_put_numbers(stdout, v + 1, 3);
+        putchar('\n');
+        if (s1 != TSE_OK || s2 != TSE_OK || s3 != TSE_OK || !isfinite(v[3]))
+            continue;
+        sum += v[3];
+        lo = fmin(lo, v[3]);
+        hi = fmax(hi, v[3]);
+        ++count;
+    }
+    run->ops->destroy(rctx);
+    if (count == 0) {
+        printf("# HAF: no height had a value (paper: " PAPER_HAF ")\n");
+        printf("haf,nan,nan,nan,paper," PAPER_HAF "\n");
+        return finish();
+    }
+    const double mean = sum / count;
+    printf("# HAF over %d of %d heights: mean %.6f, min %.6f, max %.6f (paper: " PAPER_HAF ")\n", count, n, mean, lo,
+           hi);
+    fputs("haf", stdout);
+    csv_put_numbers(stdout, (const double[3]){mean, lo, hi}, 3);
+    printf(",paper," PAPER_HAF "\n");
+    return finish();
+}
+
+int cmd_workspace(const kin_run *run)
+{
+    const int *g = run->opt->grid;
+    const double *o = run->opt->orientation;
+    long reachable = 0, total = 0;
+    const tse_status st = run->ops->workspace(run->ctx, g[0], g[1], g[2], o, &reachable, &total);
+    if (st != TSE_OK) {
+        /* Options were checked against the same rules, so this is the library disagreeing. */
+        fprintf(stderr, "tse-kin: the library refused the grid %d,%d,%d: %s\n", g[0], g[1], g[2],
+                tse_status_name(st));
+        return KIN_EXIT_FILE;
+    }
+    printf("# grid %d x %d x %d (r, phi, Z) = %ld points: r_i = (L/2) i/(NR-1), phi_j = 2 pi j/NPHI, "
+           "Z_k = L k/(NZ-1)\n",
+           g[0], g[1], g[2], total);
+    printf("# orientation %.17g,%.17g,%.17g rad; precision %s\n", o[0], o[1], o[2], run->ops->name);
+    printf("# reachable,total,fraction (paper: " PAPER_WORKSPACE " for the prototype)\n");
+    printf("%ld,%ld,%.6f\n", reachable, total, total > 0 ? (double)reachable / (double)total : 0.0);
+    return finish();
+}

@@ -1,0 +1,49 @@
+/* Command-line options of tse-kin's commands.
+ *
+ * Promise: an option a command does not take, an option without its value, or a value that is not
+ * exactly what the option needs is refused with a message naming it (the caller exits 2).  Options
+ * may be written `--name VALUE` or `--name=VALUE`; when one is repeated the last one counts.
+ * Pure: no I/O. */
+#ifndef TSE_KIN_OPTIONS_H
+#define TSE_KIN_OPTIONS_H
+
+#include <stddef.h>
+
+/* Which options a command takes (a bit set). */
+enum {
+    KIN_OPT_PARAMS = 1u << 0,      /* --params FILE */
+    KIN_OPT_PRECISION = 1u << 1,   /* --precision float|double */
+    KIN_OPT_GRID = 1u << 2,        /* --grid NR,NPHI,NZ */
+    KIN_OPT_ORIENTATION = 1u << 3, /* --orientation R,P,Y */
+    KIN_OPT_Z = 1u << 4,           /* --z Z1,Z2,... */
+    KIN_OPT_N = 1u << 5            /* --n N */
+};
+
+#define KIN_MAX_Z 256
+/* Bounds of --grid (each count, and the product) and of --n: beyond them a run takes hours. */
+#define KIN_GRID_MAX_AXIS 100000L
+#define KIN_GRID_MAX_POINTS 100000000L
+#define KIN_BENCH_MAX_N 10000000L
+
+#define KIN_DEFAULT_GRID_R 21
+#define KIN_DEFAULT_GRID_PHI 36
+#define KIN_DEFAULT_GRID_Z 41
+#define KIN_DEFAULT_BENCH_N 2000
+
+typedef struct {
+    const char *params_path;  /* NULL: the prototype's parameters */
+    int use_float;            /* --precision float */
+    int grid[3];              /* n_r, n_phi, n_z */
+    double orientation[3];    /* roll, pitch, yaw [rad] */
+    double z[KIN_MAX_Z];      /* --z heights [m] */
+    int n_z;                  /* 0: the command's default heights */
+    long bench_n;             /* poses of the bench trajectory */
+} kin_options;
+
+void kin_options_default(kin_options *o);
+
+/* Parses args[0..n) for a command that takes the options in `allowed`.  Returns 0, or -1 with the
+ * reason in err.  --help is not an option here: the caller looks for it first. */
+int kin_options_parse(int n, char *const *args, unsigned allowed, kin_options *o, char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,59 @@
+/* Row loop: see stream.h for the promise. */
+#include "stream.h"
+
+#include "csv.h"
+#include "line_reader.h"
+
+/* Enough to see what is wrong with an input without burying the terminal. */
+enum { REPORT_MAX = 5, FIELDS_MAX = 16 };
+
+static void report(long lineno, const char *why, long *reported)
+{
+    if (*reported < REPORT_MAX)
+        fprintf(stderr, "tse-kin: stdin:%ld: %s: answered invalid\n", lineno, why);
+    else if (*reported == REPORT_MAX)
+        fprintf(stderr, "tse-kin: further malformed lines are answered invalid without a message\n");
+    ++*reported;
+}
+
+int stream_rows(const kin_run *run, FILE *in, FILE *out, int n_min, int n_max, int out_numbers, stream_row_fn fn)
+{
+    static line_reader reader; /* one 4 KiB buffer, reused for every line */
+    line_reader_init(&reader, in);
+    long lineno = 0, reported = 0;
+    const char *line;
+    size_t len;
+    int overlong, got;
+    while ((got = line_reader_next(&reader, &line, &len, &overlong)) == 1) {
+        ++lineno;
+        double v[FIELDS_MAX];
+        const char *why = "line too long";
+        /* One field more than taken is read, so that a long row is told from a short one. */
+        const int n = overlong ? -1 : csv_parse_row(line, len, v, n_max + 1, &why);
+        char count_why[64];
+        if (n >= 0 && n != n_min && n != n_max) {
+            if (n_min == n_max)
+                snprintf(count_why, sizeof count_why, "%d numbers where %d are taken", n, n_min);
+            else
+                snprintf(count_why, sizeof count_why, "%d numbers where %d or %d are taken", n, n_min, n_max);
+            why = count_why;
+        }
+        if (n < 0 || (n != n_min && n != n_max)) {
+            report(lineno, why, &reported);
+            fputs("invalid,0", out);
+            csv_put_nans(out, out_numbers);
+            fputc('\n', out);
+            continue;
+        }
+        fn(run, v, n, out);
+    }
+    if (got < 0) {
+        fprintf(stderr, "tse-kin: error reading stdin after line %ld\n", lineno);
+        return KIN_EXIT_FILE;
+    }
+    if (fflush(out) != 0 || ferror(out)) {
+        fprintf(stderr, "tse-kin: error writing the output\n");
+        return KIN_EXIT_FILE;
+    }
+    return KIN_EXIT_OK;
+}

@@ -1,0 +1,382 @@
+#!/usr/bin/python3
+"""tse-kin's command-line contract, as a script sees it, run against the real binary.
+
+Usage: cli_contract.py PATH/TO/tse-kin
+
+Exit codes, one output line per input line, malformed rows answered `invalid` without stopping the
+stream, order independence, --help everywhere, parameter files, and the figures.  Every expected
+number comes from kinematics.md (its worked values, its prototype) or from hand algebra on its
+equations, never from tse-kin's own output:
+
+On the vertical axis (X = Y = 0, zero orientation) C_i = r_top e_r + Z e_z and O_i = r_act e_r, so
+u = v = u0 = (r_top - r_act) sin(eta) and rho2 = (r_top - r_act)^2 + Z^2.  By the scissor's mirror
+symmetry s_A = s_B = s, F1 vanishes, and F2 becomes A s^2 - 2 u0 s + rho2 - L^2 = 0 with
+A = 1 - 2 g (1 + cos 2 eta); the physical root (det M > 0) is the larger one.  Differentiating,
+ds/dZ = -Z / (A s - u0) for all six slides, and sigma_z = 1 / (sqrt(6) |ds/dZ|).
+"""
+import math
+import os
+import random
+import re
+import subprocess
+import sys
+import tempfile
+
+TOOL = sys.argv[1]
+failures = []
+passes = 0
+
+# kinematics.md, "Design parameters" and "Worked values".
+PROTO = dict(L=1.727, k1=0.2647, eta=math.pi / 6, k3=0.0186, k4=0.11765)
+WORKED1 = ([0, 0, 1.0, 0, 0, 0], [0.43015083911167] * 6)
+WORKED2 = ([0.1, -0.05, 1.1, 0.1, -0.05, 0.2],
+           [0.39127069075903, 0.41631844093909, 0.38241559603276, 0.42099161248302, 0.56558364785006,
+            0.23697220292616])
+# kinematics.md, "Accuracy of an accepted pose".
+TOL = {"double": 1e-9, "float": 2e-6}
+STATUSES = {"ok", "invalid", "unreachable", "below", "alpha", "stroke", "singular", "degenerate", "noconverge"}
+NUMBER = re.compile(r"^(nan|-?inf|-?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)$")
+
+
+def check(name, cond, detail=""):
+    global passes
+    if cond:
+        passes += 1
+    else:
+        failures.append(name)
+        print(f"FAIL: {name}" + (f": {detail}" if detail else ""))
+
+
+def run(args, stdin=b"", timeout=120):
+    if isinstance(stdin, str):
+        stdin = stdin.encode()
+    r = subprocess.run([TOOL] + args, input=stdin, capture_output=True, timeout=timeout)
+    return r.returncode, r.stdout.decode(), r.stderr.decode()
+
+
+def vertical(z, L=PROTO["L"], k1=PROTO["k1"], eta=PROTO["eta"], k3=PROTO["k3"], k4=PROTO["k4"]):
+    """(s, ds/dZ, sigma_z) on the vertical axis, by the hand algebra of the module docstring."""
+    l0 = k1 * L
+    g = (1 - (L / l0) ** 2) / 4
+    d = (k4 - k3) * L
+    u0 = d * math.sin(eta)
+    A = 1 - 2 * g * (1 + math.cos(2 * eta))
+    s = (u0 + math.sqrt(u0 * u0 - A * (d * d + z * z - L * L))) / A
+    dsdz = -z / (A * s - u0)
+    return s, dsdz, 1 / (math.sqrt(6) * abs(dsdz))
+
+
+def rel(a, b):
+    return abs(a - b) / max(abs(b), 1e-300)
+
+
+def csv(p):
+    return ",".join(repr(float(x)) for x in p)
+
+
+def fields(line):
+    return line.split(",")
+
+
+def well_formed(line, numbers):
+    f = fields(line)
+    return (len(f) == 2 + numbers and f[0] in STATUSES and re.fullmatch(r"[0-3]", f[1]) is not None
+            and all(NUMBER.match(x) for x in f[2:]))
+
+
+def invalid_line(line, numbers):
+    return line == "invalid,0" + ",nan" * numbers
+
+
+tmp = tempfile.mkdtemp(prefix="tse_kin_cli_")
+
+
+def write(name, text):
+    path = os.path.join(tmp, name)
+    with open(path, "w") as fh:
+        fh.write(text)
+    return path
+
+
+# ---------------------------------------------------------------- exit codes and usage errors
+rc, out, err = run(["ik"])
+check("ik on empty input exits 0 with no output", rc == 0 and out == "", f"rc {rc} out {out!r}")
+for args, name in [([], "no command"), (["frobnicate"], "unknown command"), (["ik", "--bogus"], "unknown option"),
+                   (["ik", "stray"], "stray argument"), (["ik", "--precision", "quad"], "bad precision"),
+                   (["ik", "--params"], "option without value"), (["ik", "--grid", "2,1,2"], "option of another command"),
+                   (["workspace", "--grid", "1,2"], "grid with two counts"),
+                   (["workspace", "--grid", "1,36,41"], "grid with NR < 2"),
+                   (["workspace", "--grid", "21,0,41"], "grid with NPHI < 1"),
+                   (["workspace", "--grid", "21,36,x"], "grid not a number"),
+                   (["workspace", "--grid", "21.5,36,41"], "grid not whole"),
+                   (["workspace", "--orientation", "0,0"], "orientation with two angles"),
+                   (["haf", "--z", "abc"], "haf heights not numbers"), (["bench", "--n", "1"], "bench n too small"),
+                   (["bench", "--precision", "float"], "bench takes both precisions")]:
+    rc, out, err = run(args)
+    check(f"{name} exits 2", rc == 2, f"rc {rc}")
+    check(f"{name} says why on stderr only", out == "" and err.strip() != "", f"out {out!r} err {err!r}")
+rc, out, err = run(["ik", "--bogus"])
+check("the unknown option is named", "--bogus" in err, err)
+rc, out, err = run(["frobnicate"])
+check("the unknown command is named", "frobnicate" in err, err)
+
+# ---------------------------------------------------------------- --help
+for cmd in ["", "ik", "fk", "jacobian", "haf", "workspace", "bench"]:
+    for form in (([cmd] if cmd else []) + ["--help"], ([cmd] if cmd else []) + ["-h"],
+                 ["help"] + ([cmd] if cmd else [])):
+        rc, out, err = run(form)
+        check(f"{' '.join(form)} exits 0", rc == 0, f"rc {rc}")
+        check(f"{' '.join(form)} prints usage to stdout", out.startswith("usage: tse-kin") and err == "",
+              f"{out[:60]!r} {err!r}")
+rc, out, err = run(["jacobian", "--help"])
+check("jacobian --help documents its line", "status,scissor,J11" in out and "sv1" in out, out)
+rc, out, err = run(["ik", "--help"])
+check("ik --help documents blank lines", "blank line" in out, out)
+rc, out, err = run(["ik", "--bogus", "--help"])
+check("--help wins over a bad option", rc == 0 and out.startswith("usage: tse-kin ik"), f"rc {rc}")
+
+# ---------------------------------------------------------------- worked values, both precisions
+for prec in ("double", "float"):
+    for pose, q in (WORKED1, WORKED2):
+        rc, out, err = run(["ik", "--precision", prec], csv(pose) + "\n")
+        f = fields(out.strip())
+        ok = rc == 0 and len(f) == 8 and f[0] == "ok" and f[1] == "0"
+        worst = max(abs(float(a) - b) for a, b in zip(f[2:], q)) if ok else math.inf
+        check(f"ik worked value {pose} in {prec} within {TOL[prec]}", ok and worst <= TOL[prec],
+              f"{out.strip()} (worst {worst:.3g})")
+s1, dsdz1, sigma1 = vertical(1.0)
+check("hand algebra reproduces the worked value", abs(s1 - 0.43015083911167) < 1e-13, f"{s1!r}")
+
+# ---------------------------------------------------------------- malformed rows, one line out per line in
+good = csv(WORKED1[0])
+malformed = ["abc", "", "   ", "1,2", "0,0,1,0,0,0,7", "0,,1,0,0,0", "0,0,1,0,0,0,", ",0,0,1,0,0,0",
+             "0,0,1,0,0,0 x", "0,0,1x,0,0,0", "0;0;1;0;0;0", "0,0,1,0,0,0\r7", "x" * 5000, "1," * 3000 + "1"]
+lines = []
+for m in malformed:
+    lines += [good, m]
+lines.append(good)
+text = "\n".join(lines) + "\n"
+rc, out, err = run(["ik"], text)
+outl = out.split("\n")[:-1]
+check("malformed rows: exit 0", rc == 0, f"rc {rc}")
+check("malformed rows: one line out per line in", len(outl) == len(lines), f"{len(outl)} for {len(lines)}")
+if len(outl) == len(lines):
+    for i, (inp, o) in enumerate(zip(lines, outl)):
+        if inp == good:
+            check(f"good row {i + 1} between malformed ones is solved", fields(o)[0] == "ok", o)
+        else:
+            check(f"malformed row {inp[:20]!r} answers invalid,0,nan x6", invalid_line(o, 6), o)
+check("malformed rows are reported on stderr with their line", "stdin:2:" in err, err)
+
+# A NUL byte inside a line is one malformed line, and does not eat the next one.
+rc, out, err = run(["ik"], good.encode() + b"\x00junk\n" + good.encode() + b"\n")
+outl = out.split("\n")[:-1]
+check("a NUL byte makes one invalid line and no more",
+      rc == 0 and len(outl) == 2 and invalid_line(outl[0], 6) and outl[1].startswith("ok,0,"), repr(out))
+
+# Non-finite numbers parse and go to the library, which says invalid.
+nonfinite = ["nan,0,1,0,0,0", "0,0,inf,0,0,0", "0,0,1,0,0,-inf", "1e999,0,1,0,0,0", "0,0,1,NaN,0,0"]
+rc, out, err = run(["ik"], "\n".join(nonfinite) + "\n")
+outl = out.split("\n")[:-1]
+check("non-finite rows: one line each", rc == 0 and len(outl) == len(nonfinite), repr(out))
+for inp, o in zip(nonfinite, outl):
+    check(f"non-finite row {inp} is invalid", fields(o)[0] == "invalid" and well_formed(o, 6), o)
+
+# CRLF, spaces, a last line without a newline.
+rc, crlf, err = run(["ik"], "0,0,1,0,0,0\r\n 0.1 , -0.05 ,1.1,0.1,-0.05,0.2\r\n0,0,1,0,0,0")
+rc2, lf, err2 = run(["ik"], "0,0,1,0,0,0\n0.1,-0.05,1.1,0.1,-0.05,0.2\n0,0,1,0,0,0\n")
+check("CRLF, padded fields and a missing final newline read like plain lines", rc == 0 and crlf == lf and
+      len(lf.split("\n")) == 4, f"{crlf!r} vs {lf!r}")
+
+# ---------------------------------------------------------------- order independence and format
+rnd = random.Random(20261123)
+poses = []
+for k in range(300):
+    if k % 4:
+        p = [rnd.uniform(-0.3, 0.3), rnd.uniform(-0.3, 0.3), rnd.uniform(0.35, 1.6), rnd.uniform(-0.25, 0.25),
+             rnd.uniform(-0.25, 0.25), rnd.uniform(-0.6, 0.6)]
+    else:
+        p = [rnd.uniform(-1, 1), rnd.uniform(-1, 1), rnd.uniform(-0.3, 2.0), rnd.uniform(-1.6, 1.6),
+             rnd.uniform(-1.6, 1.6), rnd.uniform(-3.2, 3.2)]
+    poses.append(csv(p))
+for prec in ("double", "float"):
+    rc, fwd, err = run(["ik", "--precision", prec], "\n".join(poses) + "\n")
+    rc2, rev, err2 = run(["ik", "--precision", prec], "\n".join(reversed(poses)) + "\n")
+    fl, rl = fwd.split("\n")[:-1], rev.split("\n")[:-1]
+    check(f"{prec}: {len(poses)} poses give {len(poses)} lines", rc == 0 and len(fl) == len(poses), f"{len(fl)}")
+    check(f"{prec}: reversing the input reverses the output", fl == list(reversed(rl)))
+    bad = [o for o in fl if not well_formed(o, 6)]
+    check(f"{prec}: every line is status,scissor + 6 numbers, NaN spelled nan", not bad, repr(bad[:3]))
+    check(f"{prec}: ok lines have scissor 0, rejections a scissor 1..3",
+          all((f[0] == "ok") == (f[1] == "0") for f in map(fields, fl)), repr(fl[:3]))
+    check(f"{prec}: the sample has both outcomes", {fields(o)[0] for o in fl} > {"ok"}, repr(set(fields(o)[0] for o in fl)))
+
+# ---------------------------------------------------------------- fk
+for prec, tol in (("double", 1e-9), ("float", 1e-4)):
+    for pose, q in (WORKED1, WORKED2):
+        for seed in ([], pose):
+            rc, out, err = run(["fk", "--precision", prec], csv(q + seed) + "\n")
+            f = fields(out.strip())
+            ok = rc == 0 and len(f) == 8 and f[0] == "ok" and f[1] == "0"
+            worst = max(abs(float(a) - b) for a, b in zip(f[2:], pose)) if ok else math.inf
+            check(f"fk {prec} of the worked slides {'with' if seed else 'without'} seed gives {pose}",
+                  ok and worst <= tol, f"{out.strip()} (worst {worst:.3g})")
+rc, out, err = run(["fk"], "1,1,1,1,1,1\n0.43,0.43,0.43,0.43,0.43\n" + csv(WORKED1[1]) + ",0,0,1,0,0\n"
+                   "0.43,0.43,0.43,0.43,0.43,0.43,0.43\n")
+outl = out.split("\n")[:-1]
+check("fk: one line per line", rc == 0 and len(outl) == 4, repr(out))
+if len(outl) == 4:
+    f = fields(outl[0])
+    check("fk: a failure never shows a pose", well_formed(outl[0], 6) and (f[0] == "ok" or f[2:] == ["nan"] * 6),
+          outl[0])
+    for o in outl[1:]:
+        check("fk: 5, 11 or 7 numbers are malformed", invalid_line(o, 6), o)
+
+# ---------------------------------------------------------------- jacobian
+rc, out, err = run(["jacobian"], "0,0,1,0,0,0\nabc\n0,0,5,0,0,0\n")
+outl = out.split("\n")[:-1]
+check("jacobian: one line per line", rc == 0 and len(outl) == 3, repr(out))
+if len(outl) == 3:
+    f = fields(outl[0])
+    check("jacobian line: status, scissor, 36 + 6 numbers", well_formed(outl[0], 42) and f[:2] == ["ok", "0"],
+          outl[0][:80])
+    J = [[float(x) for x in f[2 + 6 * i: 8 + 6 * i]] for i in range(6)]
+    sv = [float(x) for x in f[38:44]]
+    check("dq/dp: the Z column is ds/dZ of the hand algebra in every row",
+          all(rel(J[i][2], dsdz1) < 1e-9 for i in range(6)), f"{[J[i][2] for i in range(6)]} vs {dsdz1}")
+    # Three-fold and mirror symmetry: a horizontal move or a rotation raises as many slides as it lowers.
+    check("dq/dp: the other columns sum to zero over the six slides (symmetry)",
+          all(abs(sum(J[i][c] for i in range(6))) < 1e-9 for c in (0, 1, 3, 4, 5)), repr(J))
+    check("singular values of dp/dq are positive and descending",
+          all(a >= b > 0 for a, b in zip(sv, sv[1:])), repr(sv))
+    check("sigma_z of the hand algebra is a singular value of dp/dq", any(rel(x, sigma1) < 1e-9 for x in sv),
+          f"{sv} vs {sigma1}")
+    check("jacobian: malformed row is invalid,0 + 42 nan", invalid_line(outl[1], 42), outl[1][:40])
+    f = fields(outl[2])
+    check("jacobian: a rejected pose has nan numbers", f[0] != "ok" and f[2:] == ["nan"] * 42, outl[2][:40])
+
+# ---------------------------------------------------------------- haf
+zs = [0.5, 1.0, 1.4]
+for prec, tol in (("double", 1e-9), ("float", 1e-4)):
+    rc, out, err = run(["haf", "--precision", prec, "--z", ",".join(map(str, zs))])
+    data = [l for l in out.split("\n") if l and not l.startswith("#")]
+    check(f"haf {prec}: a line per height and the summary last", rc == 0 and len(data) == len(zs) + 1, out)
+    if len(data) != len(zs) + 1:
+        continue
+    hafs = []
+    for z, line in zip(zs, data):
+        v = [float(x) for x in fields(line)]
+        s, dsdz, sig = vertical(z)
+        s_r, dsdz_r, sig_r = vertical(z, k1=1.0)
+        hafs.append(sig / sig_r)
+        check(f"haf {prec} z={z}: sigma_z, sigma_z(k1=1), HAF as the hand algebra",
+              len(v) == 4 and v[0] == z and rel(v[1], sig) < tol and rel(v[2], sig_r) < tol
+              and rel(v[3], sig / sig_r) < tol, f"{v} vs {[z, sig, sig_r, sig / sig_r]}")
+    last = fields(data[-1])
+    check(f"haf {prec}: summary haf,mean,min,max,paper,11.487",
+          len(last) == 6 and last[0] == "haf" and last[4:] == ["paper", "11.487"]
+          and rel(float(last[1]), sum(hafs) / 3) < tol and rel(float(last[2]), min(hafs)) < tol
+          and rel(float(last[3]), max(hafs)) < tol, data[-1])
+    check(f"haf {prec}: the paper's figure is beside ours", "paper: 11.487" in out, out)
+rc, out, err = run(["haf"])
+data = [l for l in out.split("\n") if l and not l.startswith("#")]
+lo, hi = 0.324, 1.619  # L sin(alpha_min), L sin(alpha_max) of the prototype
+want = [lo + (hi - lo) * (0.05 + 0.9 * i / 8) for i in range(9)]
+check("haf default: 9 heights inside the alpha stops, then the summary",
+      rc == 0 and len(data) == 10 and all(abs(float(fields(l)[0]) - w) < 1e-12 for l, w in zip(data, want)), out)
+rc, out, err = run(["haf", "--z", "5"])
+check("haf at an unreachable height: nan, and a nan summary",
+      rc == 0 and "5,nan,nan,nan\n" in out and out.rstrip("\n").endswith("haf,nan,nan,nan,paper,11.487"), out)
+
+# ---------------------------------------------------------------- workspace
+rc, out, err = run(["workspace", "--grid", "2,1,2"])
+# Z = 0 puts the ball joints on the base plane (below); Z = L needs alpha = 90 deg, beyond alpha_max.
+check("workspace 2,1,2: none of the 4 points is reachable", rc == 0 and out.split("\n")[-2] == "0,4,0.000000", out)
+for prec in ("double", "float"):
+    rc, out, err = run(["workspace", "--grid", "5,4,5", "--precision", prec])
+    last = fields(out.split("\n")[-2]) if out.endswith("\n") else []
+    ok = rc == 0 and len(last) == 3 and last[1] == "100" and 0 <= int(last[0]) <= 100
+    check(f"workspace {prec}: last line reachable,total,fraction with total = 5*4*5",
+          ok and abs(float(last[2]) - int(last[0]) / 100) < 1e-6 and re.fullmatch(r"\d\.\d{6}", last[2]), out)
+    check(f"workspace {prec}: the paper's figure is named", "paper: 0.28" in out, out)
+rc, out, err = run(["workspace", "--orientation", "0.05,-0.05,0.1", "--grid", "3,3,3"])
+check("workspace with an orientation", rc == 0 and re.fullmatch(r"\d+,27,\d\.\d{6}", out.split("\n")[-2] or ""), out)
+rc, out, err = run(["workspace"])
+check("workspace default grid 21,36,41", rc == 0 and out.split("\n")[-2].split(",")[1] == str(21 * 36 * 41), out)
+
+# ---------------------------------------------------------------- bench
+rc, out, err = run(["bench", "--n", "40"])
+figures = {f[1]: f[2] for f in map(fields, out.split("\n")) if len(f) == 3 and f[0] == "bench"}
+for prec in ("double", "float"):
+    for key in (f"ik_{prec}_cold_ns", f"ik_{prec}_warm_ns", f"fk_{prec}_ns"):
+        check(f"bench prints {key} as a positive number", key in figures and 0 < float(figures[key]) < 1e9,
+              repr(figures.get(key)))
+    check(f"bench prints labelled {prec} lines",
+          f"ik {prec} warm: median" in out and f"ik {prec} cold: median" in out and f"fk {prec} warm: median" in out,
+          out)
+    check(f"bench {prec}: iterations counted", float(figures.get(f"ik_{prec}_warm_iter_mean", 0)) > 0, out)
+    check(f"bench {prec}: the path stays reachable", figures.get(f"{prec}_not_ok") == "0", out)
+check("bench exits 0", rc == 0, f"rc {rc} {err}")
+
+# ---------------------------------------------------------------- parameter files
+rc, out, err = run(["ik", "--params", os.path.join(tmp, "missing.params")], good + "\n")
+check("missing params file exits 1, naming it", rc == 1 and "missing.params" in err and out == "", f"rc {rc} {err}")
+rc, out, err = run(["ik", "--params", tmp], good + "\n")
+check("a directory as params file exits 1", rc == 1 and out == "", f"rc {rc} {err}")
+bad = write("bad.params", "L = 1.7\nk2 = 3\n")
+rc, out, err = run(["ik", "--params", bad], good + "\n")
+check("unknown key exits 1 naming file and line", rc == 1 and f"{bad}:2: unknown key 'k2'" in err, err)
+bad = write("dup.params", "# d\ns_max = 0.8\ns_max = 0.7\n")
+rc, out, err = run(["workspace", "--params", bad])
+check("duplicate key exits 1 naming the line", rc == 1 and f"{bad}:3:" in err and "twice" in err, err)
+bad = write("val.params", "k1 = 0.2647x\n")
+rc, out, err = run(["haf", "--params", bad])
+check("malformed value exits 1 naming the line", rc == 1 and f"{bad}:1:" in err, err)
+bad = write("set.params", "k1 = 0.3\neta_deg = 95\n")
+rc, out, err = run(["ik", "--params", bad], good + "\n")
+check("invalid set exits 1 naming the key's line", rc == 1 and f"{bad}:2: eta_deg" in err, err)
+bad = write("dflt.params", "alpha_min_deg = 75\n")
+rc, out, err = run(["bench", "--params", bad, "--n", "10"])
+check("invalid set through a default names the default value",
+      rc == 1 and "default value alpha_max_deg" in err and out == "", err)
+# Valid in double, but L overflows float: the float build refuses it, by name.
+big = write("big.params", "L = 1e39\n")
+rc, out, err = run(["ik", "--params", big], good + "\n")
+check("L = 1e39 is a valid double set", rc == 0, f"rc {rc} {err}")
+rc, out, err = run(["ik", "--params", big, "--precision", "float"], good + "\n")
+check("L = 1e39 in float exits 1 naming line and key", rc == 1 and f"{big}:1: L" in err and "float" in err, err)
+rc, out, err = run(["bench", "--params", big, "--n", "10"])
+check("bench refuses a set float cannot hold before timing anything", rc == 1 and out == "", f"rc {rc} {out!r}")
+
+# The values are applied: a stroke below the vertical solution at Z = 1 (s = 0.430 m).
+short = write("short.params", "# shorter stroke\r\ns_max = 0.40   # metres\r\n")
+rc, out, err = run(["ik", "--params", short], good + "\n")
+f = fields(out.strip())
+check("s_max = 0.40 makes (0,0,1) a stroke rejection of scissor 1", rc == 0 and f[:2] == ["stroke", "1"], out)
+# L scales the design; the hand algebra with L = 2 gives the slides at (0, 0, 1).
+longer = write("long.params", "L = 2.0\n")
+for prec in ("double", "float"):
+    rc, out, err = run(["ik", "--params", longer, "--precision", prec], good + "\n")
+    f = fields(out.strip())
+    s2 = vertical(1.0, L=2.0)[0]
+    check(f"L = 2 {prec}: the slides of the hand algebra", rc == 0 and f[0] == "ok" and
+          all(abs(float(x) - s2) <= TOL[prec] for x in f[2:]), f"{out.strip()} vs {s2}")
+# Every key written out at the prototype's values, angles in degrees: the same answers.
+proto = write("proto.params", "\n".join([
+    "L = 1.727", "k1 = 0.2647", "eta_deg = 30", "k3 = 0.0186", "k4 = 0.11765",
+    f"alpha_min_deg = {math.degrees(math.asin(0.324 / 1.727))!r}",
+    f"alpha_max_deg = {math.degrees(math.asin(1.619 / 1.727))!r}",
+    "s_min = 0", "s_max = 0.9", "mu_min = 0.05", "nu_min = 0.001"]) + "\n")
+sample = "\n".join(poses[:40]) + "\n"
+rc, a, err = run(["ik", "--params", proto], sample)
+rc2, b, err2 = run(["ik"], sample)
+same = rc == 0 and rc2 == 0 and len(a.split("\n")) == len(b.split("\n"))
+if same:
+    for la, lb in zip(a.split("\n")[:-1], b.split("\n")[:-1]):
+        fa, fb = fields(la), fields(lb)
+        same = same and fa[:2] == fb[:2] and all(
+            (x == y) or abs(float(x) - float(y)) < 1e-12 for x, y in zip(fa[2:], fb[2:]))
+check("the prototype written out in a file (degrees) answers as the defaults", same, err)
+
+print(f"{passes} passed, {len(failures)} failed")
+sys.exit(1 if failures else 0)
