@@ -35,7 +35,6 @@ typedef struct {
     fw_state last_state;
     fw_fault last_fault;
     uint32_t reported;
-    uint64_t pulses_at_start; /* plant pulses when motion was last accepted */
     bool awaiting_first_step;
     uint64_t accepted_tick;   /* plant tick at which motion was accepted */
     uint64_t estop_tick;      /* plant tick at which the e-stop was taken (0: none) */
@@ -75,7 +74,6 @@ static void control(void *arg)
     }
     if (s->fw.state != s->last_state || s->fw.fault != s->last_fault) {
         if (s->fw.state == FW_STATE_MOVING || s->fw.state == FW_STATE_HOMING) {
-            s->pulses_at_start = s->plant.pulses;
             s->awaiting_first_step = true;
             s->accepted_tick = s->plant.tick;
             plant_mark(&s->plant);
