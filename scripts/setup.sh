@@ -8,6 +8,8 @@ packages=(
   cmake make gcc libc6-dev          # host build
   libcmocka-dev                     # unit tests
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi   # the board build
+  qemu-system-arm gdb-multiarch     # on-target tests and instruction counts (netduinoplus2)
+  openocd stlink-tools              # flashing the board through an ST-Link
   python3 python3-mpmath            # the independent high-precision oracle
   python3-numpy python3-scipy       # the fsolve baseline of the benchmark
   python3-canmatrix python3-can     # third-party decoders that check the DBC
