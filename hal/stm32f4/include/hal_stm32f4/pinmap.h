@@ -17,16 +17,17 @@
  * | SWDIO/SWCLK     | PA13/PA14  | programming and debug (ST-Link)                              |
  * | OSC_IN/OSC_OUT  | PH0/PH1    | 8 MHz crystal (HSE)                                          |
  *
- * Timers (APB1 at 42 MHz, so its timers count at 84 MHz):
+ * Timers (APB1 at 42 MHz, so its timers count at 84 MHz; QEMU's count at 1 GHz whatever the
+ * clock tree says):
  * | timer | job                                                                             |
  * |-------|---------------------------------------------------------------------------------|
- * | TIM2  | step interrupt at step_hz (update event), and the end of every STEP pulse       |
- * |       | (compare channel 1 at step_pulse_ns after the update, enabled only when a pulse |
- * |       | went out); highest interrupt priority                                           |
- * | TIM3  | control tick at segment_hz: its interrupt only counts; the main loop runs the   |
- * |       | tick, so all of the controller's state changes in one context                   |
+ * | TIM2  | the step interrupt at step_hz (update event), highest priority; in the benchmark |
+ * |       | image, the instruction counter instead                                          |
+ * | TIM4  | the end of the STEP pulses: a one-shot of step_pulse_ns started by each pulse,   |
+ * |       | whose update interrupt drives the STEP pins low again                           |
+ * | TIM3  | the control tick at segment_hz: its interrupt only counts; the main loop runs   |
+ * |       | the tick, so all of the controller's state changes in one context               |
  * | TIM5  | free-running 1 MHz counter: the microsecond clock (32 bits, extended to 64)     |
- * | TIM4  | free for the benchmark image (counts instructions under QEMU -icount)          |
  */
 #ifndef TSE_BOARD_PINMAP_H
 #define TSE_BOARD_PINMAP_H
