@@ -230,6 +230,8 @@ static void param_save(fw_controller *c, uint8_t function)
 
 void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
 {
+    /* An e-stop interrupt during the poll: no command is taken against the state before it. */
+    fw_estop_complete(c);
     const uint8_t node = (uint8_t)(f->id & PROTO_NODE_MASK);
     const uint8_t function = (uint8_t)(f->id >> PROTO_NODE_BITS);
     const bool broadcast = node == PROTO_BROADCAST;

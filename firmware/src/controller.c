@@ -32,6 +32,36 @@ void fw_drives(fw_controller *c, bool on)
 {
     c->drives_on = on;
     c->hal.stepper.enable(c->hal.stepper.ctx, on);
+    /* An e-stop interrupt just before the enable would be undone by it: look after it.  Either
+     * the request shows here, or the interrupt's own switch-off comes after ours. */
+    if (on && atomic_load(&c->estop_request)) {
+        c->drives_on = false;
+        c->hal.stepper.enable(c->hal.stepper.ctx, false);
+    }
+}
+
+/* Whole steps of a length in micrometres (integer: the same on the float board build). */
+static int32_t um_to_steps(const fw_param_set *s, int32_t um)
+{
+    const int64_t x = (int64_t)um * s->v[FP_STEPS_PER_M];
+    return (int32_t)((x >= 0 ? x + 500000 : x - 500000) / 1000000);
+}
+
+int32_t fw_home_switch_steps(const fw_controller *c, int k)
+{
+    /* The last whole step at or below the switch (home_sw_k >= s_min >= 0): pressed there. */
+    return (int32_t)((int64_t)c->params.v[FP_HOME_SW_1 + k] * c->params.v[FP_STEPS_PER_M] / 1000000);
+}
+
+/* The STEP pulse against the step interrupt period T = 1e9 / step_hz ns: it must end within the
+ * period it rose in (the step generator changes DIR only at a tick, so DIR never changes under a
+ * high STEP, and a board that ends the pulse from its step timer has a compare within the period),
+ * and the same slide's next rising edge, at least min_step_interval periods later, must leave a low
+ * time at least as long as the high time. */
+static bool pulse_fits(uint32_t pulse_ns, uint32_t step_hz, uint32_t interval)
+{
+    const uint64_t high = (uint64_t)pulse_ns * step_hz; /* in units of 1e-9 periods */
+    return high < 1000000000u && 2u * high <= (uint64_t)interval * 1000000000u;
 }
 
 int fw_apply_params(fw_controller *c, const fw_param_set *s)
@@ -44,14 +74,40 @@ int fw_apply_params(fw_controller *c, const fw_param_set *s)
     if (tse_geometry_init(&g, &kp) != TSE_PARAM_OK)
         return -1;
     /* Two steps of one slide at least step_hz / step_rate_max ticks apart. */
-    const uint32_t interval = (c->cfg.step_hz + (uint32_t)s->v[FP_STEP_RATE_MAX] - 1u) / (uint32_t)s->v[FP_STEP_RATE_MAX];
-    const stepgen_config sc = {c->cfg.step_hz / c->cfg.segment_hz, 1u, interval ? interval : 1u};
+    uint32_t interval = (c->cfg.step_hz + (uint32_t)s->v[FP_STEP_RATE_MAX] - 1u) / (uint32_t)s->v[FP_STEP_RATE_MAX];
+    if (interval == 0)
+        interval = 1;
+    const uint32_t pulse_ns = (uint32_t)s->v[FP_STEP_PULSE_NS], dir_ns = (uint32_t)s->v[FP_DIR_SETUP_NS];
+    if (!pulse_fits(pulse_ns, c->cfg.step_hz, interval))
+        return -1;
+    /* DIR set-up in whole ticks, rounded up, and at least one (the generator's own minimum). */
+    uint64_t setup = ((uint64_t)dir_ns * c->cfg.step_hz + 999999999u) / 1000000000u;
+    if (setup == 0)
+        setup = 1;
+    const uint32_t per_segment = c->cfg.step_hz / c->cfg.segment_hz;
+    if (setup >= per_segment)
+        return -1; /* no room for a step in a segment that changes direction */
+    const stepgen_config sc = {per_segment, (uint32_t)setup, interval};
     int32_t pos[STEPGEN_AXES];
     stepgen_positions(&c->sg, pos);
     if (!stepgen_idle(&c->sg) || stepgen_init(&c->sg, &sc, pos) != 0)
         return -1; /* parameters change only at rest */
+    /* A fresh generator is not halted: an e-stop interrupt before it asked for a halt that must
+     * last until the request is completed (the generator is idle, so no step came in between). */
+    if (atomic_load(&c->estop_request))
+        stepgen_halt(&c->sg);
     /* A fresh generator assumes its direction mask: make the pins agree with it. */
     c->hal.stepper.set_dir(c->hal.stepper.ctx, c->sg.forward_mask);
+    if (c->hal.stepper.timing)
+        c->hal.stepper.timing(c->hal.stepper.ctx, pulse_ns, dir_ns);
+    /* The zero was set against the old switch positions and step size. */
+    bool rezero = s->v[FP_STEPS_PER_M] != c->params.v[FP_STEPS_PER_M];
+    for (int k = 0; k < 6; ++k)
+        rezero = rezero || s->v[FP_HOME_SW_1 + k] != c->params.v[FP_HOME_SW_1 + k];
+    if (rezero) {
+        c->homed = false;
+        c->pose_known = false;
+    }
     c->params = *s;
     c->geom = g;
     const tse_real micro = TSE_R(1e-6);
@@ -86,6 +142,7 @@ int fw_init(fw_controller *c, const fw_hal *hal, const fw_config *cfg)
     c->hal = *hal;
     c->cfg = *cfg;
     c->state = FW_STATE_BOOT;
+    atomic_init(&c->estop_request, false);
 
     fw_param_set s;
     fw_params_default(&s);
@@ -121,6 +178,21 @@ void fw_estop(fw_controller *c)
     c->fault = FW_FAULT_ESTOP;
     c->pending_fault = FW_FAULT_NONE;
     fw_set_state(c, FW_STATE_ESTOP);
+}
+
+void fw_estop_isr(fw_controller *c)
+{
+    /* Stepping first: it is what must stop at once.  The request last, so that whoever completes
+     * it finds the halt already in place. */
+    stepgen_halt(&c->sg);
+    c->hal.stepper.enable(c->hal.stepper.ctx, false);
+    atomic_store(&c->estop_request, true);
+}
+
+void fw_estop_complete(fw_controller *c)
+{
+    if (atomic_exchange(&c->estop_request, false))
+        fw_estop(c);
 }
 
 static void latch_fault(fw_controller *c, fw_fault f)
@@ -329,6 +401,27 @@ static void run_joint(fw_controller *c)
         c->src = FW_SRC_NONE;
 }
 
+/* What the switches say against what the controller believes: a high-end switch pressed, or, once
+ * homed and outside homing, a low switch pressed clearly above its position or released clearly
+ * below it (the step count and the switch disagree: lost steps, or a broken switch). */
+static bool switches_disagree(const fw_controller *c, uint16_t pressed)
+{
+    if (pressed & 0x3F00u)
+        return true;
+    if (!c->homed || c->home.active)
+        return false;
+    int32_t pos[STEPGEN_AXES];
+    stepgen_positions(&c->sg, pos);
+    const int32_t tol = um_to_steps(&c->params, FW_HOME_SW_TOLERANCE_UM);
+    for (int k = 0; k < 6; ++k) {
+        const int32_t sw = fw_home_switch_steps(c, k);
+        const bool on = (pressed >> k) & 1u;
+        if ((on && pos[k] > sw + tol) || (!on && pos[k] < sw - tol))
+            return true;
+    }
+    return false;
+}
+
 static void supervise(fw_controller *c)
 {
     if (c->state == FW_STATE_BOOT)
@@ -340,8 +433,8 @@ static void supervise(fw_controller *c)
     }
     const bool active = c->state == FW_STATE_IDLE || c->state == FW_STATE_MOVING ||
                         c->state == FW_STATE_STOPPING || c->state == FW_STATE_HOMING;
-    if (!c->home.active && active && (c->hal.inputs.limits(c->hal.inputs.ctx) & 0x3F3Fu)) {
-        c->homed = false;
+    if (!c->home.active && active && switches_disagree(c, c->hal.inputs.limits(c->hal.inputs.ctx))) {
+        c->homed = false; /* the step count is not to be trusted any more */
         fw_fault_raise(c, FW_FAULT_LIMIT);
     }
     hal_can_state cs;
@@ -355,6 +448,7 @@ static void supervise(fw_controller *c)
 
 void fw_control_tick(fw_controller *c)
 {
+    fw_estop_complete(c);
     supervise(c);
     if (c->state == FW_STATE_ESTOP || c->state == FW_STATE_FAULT || c->state == FW_STATE_BOOT)
         return;
@@ -393,7 +487,7 @@ static void send_status(fw_controller *c)
         flags |= 2u;
     if (c->hal.inputs.estop(c->hal.inputs.ctx))
         flags |= 4u;
-    if (c->hal.inputs.limits(c->hal.inputs.ctx) & 0x3F3Fu)
+    if (switches_disagree(c, c->hal.inputs.limits(c->hal.inputs.ctx)))
         flags |= 8u;
     hal_can_state cs;
     c->hal.can.state(c->hal.can.ctx, &cs);
@@ -429,6 +523,7 @@ static void send_telemetry(fw_controller *c)
 
 void fw_poll(fw_controller *c)
 {
+    fw_estop_complete(c);
     hal_can_frame f;
     while (c->hal.can.receive(c->hal.can.ctx, &f) == 1)
         fw_handle_frame(c, &f);

@@ -1,30 +1,49 @@
-/* Homing: every slide seeks its low limit switch, brakes, creeps back until the switch releases
- * (that edge is the slide's zero: the switch sits at s_min), then all six go to the symmetric
- * home configuration in a joint-space move.  Joint speeds ramp within the slide acceleration
- * limit throughout, so a stop or fault can bring homing to rest at any moment. */
+/* Homing: every slide finds the release edge of its low switch on its own, then all six go to the
+ * symmetric home configuration in a joint-space move.
+ *
+ * The switch of slide k is pressed at and below home_sw_k and released above it, so a slide below
+ * its switch sees it pressed.  Each slide:
+ *   LEAVE   (only if it starts pressed) up at the homing speed until the switch releases, on for
+ *           homing_backoff, then brakes;
+ *   SEEK    down at the homing speed until the switch is pressed, then brakes;
+ *   RELEASE up at the creep speed until the switch releases: that edge, the first step above the
+ *           last pressed one, is s = home_sw_k plus one step;
+ *   DONE.
+ * So homing takes the distances at the homing speed; only the braking distance and the switch's
+ * hysteresis are crept.  Joint speeds ramp within the slide acceleration limit throughout, so a
+ * stop or fault can bring homing to rest at any moment. */
 #include "fw/controller_internal.h"
 
-/* The release creep runs at this fraction of the homing speed, so that the slide moves less than
- * a step per control tick and the switch edge (the zero) is found to within one step: a step of
- * slide error is several micrometres at the plate. */
+/* The release creep runs at this fraction of the homing speed, and at most half a step per control
+ * tick: the steps emitted are read once per tick, so with less than one step between two reads the
+ * step at which the switch released is known exactly (a step of slide error is several
+ * micrometres at the plate). */
 #define CREEP_FRACTION TSE_R(0.015625) /* 1/64 */
-/* Margin of travel beyond the full stroke before a missing switch is declared. */
+/* Travel beyond the full stroke before a missing switch (seeking) or a switch that never releases
+ * (leaving) is declared. */
 #define SEEK_MARGIN TSE_R(0.05)
+/* Creep beyond the braking distance before a release that never comes is declared: a switch's
+ * hysteresis is well under a millimetre. */
+#define RELEASE_MARGIN TSE_R(0.005)
+/* Of the acceleration limit, what the homing ramps use. */
+#define ACCEL_SHARE TSE_R(0.9)
 
 void fw_homing_start(fw_controller *c)
 {
     fw_homing *h = &c->home;
     h->active = true;
     h->abort = false;
-    h->phase = HOME_SEEK;
+    h->phase = HOME_SWITCHES;
+    h->released = 0;
     h->hit = 0;
-    h->latched = 0;
     stepgen_positions(&c->sg, h->start_steps);
+    const uint16_t pressed = c->hal.inputs.limits(c->hal.inputs.ctx);
     for (int k = 0; k < 6; ++k) {
+        h->axis[k] = (uint8_t)(((pressed >> k) & 1u) ? HOME_AXIS_LEAVE : HOME_AXIS_SEEK);
         h->v[k] = TSE_R(0.0);
         h->s[k] = TSE_R(0.0);
-        h->offset[k] = TSE_R(0.0);
-        h->released[k] = TSE_R(0.0);
+        h->mark[k] = TSE_R(0.0);
+        h->edge_steps[k] = 0;
     }
     c->homed = false;
     c->pose_known = false;
@@ -55,15 +74,24 @@ static void finish(fw_controller *c, bool homed)
     fw_set_state(c, FW_STATE_IDLE);
 }
 
+static void homing_fault(fw_controller *c)
+{
+    c->pending_fault = FW_FAULT_HOMING;
+    c->home.abort = true;
+}
+
 static void start_joint_move(fw_controller *c)
 {
     fw_homing *h = &c->home;
     int32_t now[6];
+    stepgen_positions(&c->sg, now); /* at rest: every pushed step is out */
     tse_real longest = TSE_R(0.0);
+    const tse_real spm = (tse_real)c->params.v[FP_STEPS_PER_M];
     for (int k = 0; k < 6; ++k) {
-        c->joint.from[k] = h->s[k] + h->offset[k];
+        /* The edge step is one above home_sw_k; what came after it counts on from there. */
+        now[k] = fw_home_switch_steps(c, k) + 1 + (now[k] - h->edge_steps[k]);
+        c->joint.from[k] = (tse_real)now[k] / spm;
         c->joint.to[k] = c->geom.home_s;
-        now[k] = fw_to_steps(c, c->joint.from[k]);
         c->q[k] = c->q_prev[k] = c->joint.from[k];
         const tse_real d = tse_fabs(c->joint.to[k] - c->joint.from[k]);
         if (d > longest)
@@ -80,6 +108,75 @@ static void start_joint_move(fw_controller *c)
     c->segments_run = 0;
     c->stopping = false;
     c->src = FW_SRC_JOINT;
+}
+
+typedef struct {
+    tse_real v_home, creep, backoff, brake, stroke;
+} home_speeds;
+
+/* The speed slide k asks for on this tick, with its edges (switch changes) taken; a fault aborts
+ * homing.  on/high: its low and high switch; pos: steps emitted, read after the switches. */
+static tse_real axis_want(fw_controller *c, const home_speeds *hs, int k, bool on, bool high, int32_t pos)
+{
+    fw_homing *h = &c->home;
+    const uint8_t bit = (uint8_t)(1u << k);
+    switch ((fw_home_axis)h->axis[k]) {
+    case HOME_AXIS_LEAVE:
+        if (!(h->released & bit)) {
+            if (!on) {
+                h->released |= bit;
+                h->mark[k] = h->s[k];
+            } else if (high || h->s[k] > hs->stroke + SEEK_MARGIN) {
+                homing_fault(c); /* the switch does not release */
+                return TSE_R(0.0);
+            }
+        }
+        if (!(h->released & bit) || h->s[k] - h->mark[k] < hs->backoff)
+            return hs->v_home;
+        return TSE_R(0.0);
+    case HOME_AXIS_SEEK:
+        if (on)
+            h->hit |= bit;
+        if (h->mark[k] - h->s[k] > hs->stroke + SEEK_MARGIN) {
+            homing_fault(c); /* no switch within the stroke */
+            return TSE_R(0.0);
+        }
+        return (h->hit & bit) ? TSE_R(0.0) : -hs->v_home;
+    case HOME_AXIS_RELEASE:
+        if (!on) {
+            h->edge_steps[k] = pos;
+            h->axis[k] = HOME_AXIS_DONE;
+            return TSE_R(0.0);
+        }
+        if (h->s[k] - h->mark[k] > hs->brake + RELEASE_MARGIN)
+            homing_fault(c);
+        return hs->creep;
+    case HOME_AXIS_DONE:
+        break;
+    }
+    return TSE_R(0.0);
+}
+
+/* Slide k has come to rest (asked speed and speed both zero): the next phase. */
+static void axis_at_rest(fw_controller *c, int k, bool on)
+{
+    fw_homing *h = &c->home;
+    const uint8_t bit = (uint8_t)(1u << k);
+    if (h->axis[k] == HOME_AXIS_LEAVE && (h->released & bit)) {
+        if (on) {
+            h->released &= (uint8_t)~bit; /* a glitch, not the release: go on leaving */
+            return;
+        }
+        h->axis[k] = HOME_AXIS_SEEK;
+        h->mark[k] = h->s[k];
+    } else if (h->axis[k] == HOME_AXIS_SEEK && (h->hit & bit)) {
+        if (!on) {
+            h->hit &= (uint8_t)~bit; /* a glitch, not the press: go on seeking */
+            return;
+        }
+        h->axis[k] = HOME_AXIS_RELEASE;
+        h->mark[k] = h->s[k];
+    }
 }
 
 void fw_homing_tick(fw_controller *c)
@@ -101,43 +198,35 @@ void fw_homing_tick(fw_controller *c)
         return;
 
     const tse_real dt = TSE_R(1.0) / (tse_real)c->cfg.segment_hz;
-    const tse_real dv = TSE_R(0.9) * c->lim.slide_amax * dt;
-    const tse_real v_home = (tse_real)c->params.v[FP_HOMING_SPEED] * TSE_R(1e-6);
-    const tse_real stroke = c->geom.p.s_max - c->geom.p.s_min;
+    const tse_real accel = ACCEL_SHARE * c->lim.slide_amax;
+    const tse_real dv = accel * dt;
+    const tse_real spm = (tse_real)c->params.v[FP_STEPS_PER_M];
+    home_speeds hs;
+    hs.v_home = (tse_real)c->params.v[FP_HOMING_SPEED] * TSE_R(1e-6);
+    hs.creep = CREEP_FRACTION * hs.v_home;
+    const tse_real half_step_per_tick = TSE_R(0.5) * (tse_real)c->cfg.segment_hz / spm;
+    if (hs.creep > half_step_per_tick)
+        hs.creep = half_step_per_tick;
+    hs.backoff = (tse_real)c->params.v[FP_HOMING_BACKOFF] * TSE_R(1e-6);
+    /* Braking from the homing speed covers v^2 / 2a, plus a tick at full speed per ramp step. */
+    hs.brake = hs.v_home * hs.v_home / (TSE_R(2.0) * accel) + hs.v_home * dt;
+    hs.stroke = c->geom.p.s_max - c->geom.p.s_min;
     const uint16_t pressed = c->hal.inputs.limits(c->hal.inputs.ctx);
-    bool moving = false;
+    int32_t pos[6];
+    stepgen_positions(&c->sg, pos); /* after the switches: a release seen is in these steps */
+    bool moving = false, done = true;
     int32_t target[6];
     for (int k = 0; k < 6; ++k) {
-        const bool on = (pressed >> k) & 1u;
-        tse_real want = TSE_R(0.0);
-        if (!h->abort) {
-            if (h->phase == HOME_SEEK) {
-                if (on)
-                    h->hit |= (uint8_t)(1u << k);
-                if (!((h->hit >> k) & 1u))
-                    want = -v_home;
-                if (-h->s[k] > stroke + SEEK_MARGIN) {
-                    c->pending_fault = FW_FAULT_HOMING;
-                    h->abort = true;
-                }
-            } else if (h->phase == HOME_RELEASE && !((h->latched >> k) & 1u)) {
-                if (!on) {
-                    /* The edge: this travel is s = s_min. */
-                    h->latched |= (uint8_t)(1u << k);
-                    h->offset[k] = c->geom.p.s_min - h->s[k];
-                } else {
-                    want = CREEP_FRACTION * v_home;
-                    if (h->s[k] - h->released[k] > SEEK_MARGIN) {
-                        c->pending_fault = FW_FAULT_HOMING;
-                        h->abort = true;
-                    }
-                }
-            }
-        }
+        const bool on = (pressed >> k) & 1u, high = (pressed >> (8 + k)) & 1u;
+        const tse_real want = h->abort ? TSE_R(0.0) : axis_want(c, &hs, k, on, high, pos[k]);
         h->v[k] = approach(h->v[k], h->abort ? TSE_R(0.0) : want, dv);
         h->s[k] += h->v[k] * dt;
         if (h->v[k] != TSE_R(0.0))
             moving = true;
+        else if (want == TSE_R(0.0) && !h->abort)
+            axis_at_rest(c, k, on);
+        if (h->axis[k] != HOME_AXIS_DONE)
+            done = false;
         target[k] = h->start_steps[k] + fw_to_steps(c, h->s[k]);
     }
     if (moving) {
@@ -146,14 +235,9 @@ void fw_homing_tick(fw_controller *c)
     }
     if (!stepgen_idle(&c->sg))
         return;
-    /* At rest: on to the next phase. */
-    if (h->abort) {
+    /* At rest: on to the home pose, or the end. */
+    if (h->abort)
         finish(c, false);
-    } else if (h->phase == HOME_SEEK && h->hit == 0x3Fu) {
-        h->phase = HOME_RELEASE;
-        for (int k = 0; k < 6; ++k)
-            h->released[k] = h->s[k];
-    } else if (h->phase == HOME_RELEASE && h->latched == 0x3Fu) {
+    else if (done)
         start_joint_move(c);
-    }
 }

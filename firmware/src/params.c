@@ -6,6 +6,11 @@
  * microstepping on a 10 mm lead, 0.78 um per step, fine enough that rounding the six slides to
  * whole steps moves the plate by well under 1e-5 rad; their speed limit keeps the step rate
  * (192 kHz at 0.15 m/s) under the 200 kHz a slide may be stepped at. */
+#define HOME_SW_DOC(k)                                                                             \
+    "where slide " #k "'s homing switch trips: pressed at and below, released above; homing sets "  \
+    "the slide's coordinate at the edge; once homed, a disagreement beyond 0.5 mm is a limit "      \
+    "fault; a change needs homing again"
+
 const fw_param_def fw_param_table[FP_COUNT] = {
     [FP_L] = {"L", "um", 100000, 10000000, 1727000, "total scissor length"},
     [FP_K1] = {"k1", "ppm", 1, 1000000, 264700, "l0 / L"},
@@ -32,7 +37,29 @@ const fw_param_def fw_param_table[FP_COUNT] = {
     [FP_STATUS_MS] = {"status_ms", "ms", 10, 10000, 100, "STATUS period"},
     [FP_TELEMETRY_MS] = {"telemetry_ms", "ms", 0, 10000, 50, "SLIDES and FK period (0: off)"},
     [FP_HOMING_SPEED] = {"homing_speed", "um/s", 100, 500000, 20000, "homing speed"},
-    [FP_HOMING_BACKOFF] = {"homing_backoff", "um", 0, 100000, 2000, "back-off from the switch"},
+    [FP_HOMING_BACKOFF] = {"homing_backoff", "um", 0, 100000, 2000,
+                           "how far a slide that starts on its switch goes on past the release "
+                           "before seeking the switch"},
+    /* The homing switches: the alpha stop keeps the symmetric pose above s = 0.184 m, so six
+     * slides seeking down together never reach s = 0; 0.2 m is above that.  The slides still go
+     * below the switches in asymmetric poses: a reference, not an end of travel. */
+    [FP_HOME_SW_1] = {"home_sw_1", "um", 0, 5000000, 200000, HOME_SW_DOC(1)},
+    [FP_HOME_SW_2] = {"home_sw_2", "um", 0, 5000000, 200000, HOME_SW_DOC(2)},
+    [FP_HOME_SW_3] = {"home_sw_3", "um", 0, 5000000, 200000, HOME_SW_DOC(3)},
+    [FP_HOME_SW_4] = {"home_sw_4", "um", 0, 5000000, 200000, HOME_SW_DOC(4)},
+    [FP_HOME_SW_5] = {"home_sw_5", "um", 0, 5000000, 200000, HOME_SW_DOC(5)},
+    [FP_HOME_SW_6] = {"home_sw_6", "um", 0, 5000000, 200000, HOME_SW_DOC(6)},
+    /* DM542/TB6600-class drivers ask for STEP pulses of at least 2 us and DIR set 5 us ahead. */
+    [FP_STEP_PULSE_NS] = {"step_pulse_ns", "ns", 100, 1000000, 2000,
+                          "STEP high time; refused unless the pulse ends within its step interrupt "
+                          "period and leaves a low time at least as long before the same slide's "
+                          "next step"},
+    [FP_DIR_SETUP_NS] = {"dir_setup_ns", "ns", 0, 1000000, 5000,
+                         "DIR stable before a STEP edge (rounded up to whole step interrupts, at "
+                         "least one)"},
+    [FP_CAN_KBPS] = {"can_kbps", "kbit/s", 125, 1000, 500,
+                     "CAN bit rate: 125, 250, 500 or 1000; the board applies it at start-up, so "
+                     "it takes effect after PARAM_SAVE and a restart"},
 };
 
 void fw_params_default(fw_param_set *s)
@@ -67,24 +94,55 @@ static const fw_param_id kin_param[TSE_PARAM_COUNT] = {
     [TSE_PARAM_NU_MIN] = FP_NU_MIN,
 };
 
+int fw_param_value_ok(uint16_t id, int32_t value)
+{
+    if (id >= FP_COUNT || value < fw_param_table[id].min || value > fw_param_table[id].max)
+        return 0;
+    if (id == FP_CAN_KBPS)
+        return value == 125 || value == 250 || value == 500 || value == 1000;
+    return 1;
+}
+
+/* The homing switches inside the stroke, and reachable all at once (see params.h). */
+static int check_switches(const fw_param_set *s, const tse_params *p)
+{
+    for (int k = 0; k < 6; ++k) {
+        const int32_t sw = s->v[FP_HOME_SW_1 + k];
+        if (sw < s->v[FP_S_MIN] || sw > s->v[FP_S_MAX])
+            return FP_HOME_SW_1 + k;
+    }
+    /* kinematics.md: a scissor's width w = sqrt(sA^2 + sB^2 + 2 cos(2 eta) sA sB) and
+     * alpha = acos(w / (2 l0)); alpha <= alpha_max is w >= 2 l0 cos(alpha_max). */
+    const tse_real c = tse_cos(TSE_R(2.0) * p->eta);
+    const tse_real w_lo = TSE_R(2.0) * p->k1 * p->L * tse_cos(p->alpha_max);
+    for (int j = 0; j < 3; ++j) {
+        const tse_real a = (tse_real)s->v[FP_HOME_SW_1 + 2 * j] * TSE_R(1e-6);
+        const tse_real b = (tse_real)s->v[FP_HOME_SW_1 + 2 * j + 1] * TSE_R(1e-6);
+        const tse_real w2 = a * a + b * b + TSE_R(2.0) * c * a * b;
+        if (w2 < w_lo * w_lo)
+            return FP_HOME_SW_1 + 2 * j;
+    }
+    return -1;
+}
+
 int fw_params_check(const fw_param_set *s)
 {
     for (int i = 0; i < FP_COUNT; ++i)
-        if (s->v[i] < fw_param_table[i].min || s->v[i] > fw_param_table[i].max)
+        if (!fw_param_value_ok((uint16_t)i, s->v[i]))
             return i;
     tse_params p;
     fw_params_kinematics(s, &p);
     const tse_param_id bad = tse_params_check(&p);
     if (bad != TSE_PARAM_OK)
         return (int)kin_param[bad];
-    return -1;
+    return check_switches(s, &p);
 }
 
 int fw_params_set_one(fw_param_set *s, uint16_t id, int32_t value)
 {
     if (id >= FP_COUNT)
         return FW_REASON_PARAM_UNKNOWN;
-    if (value < fw_param_table[id].min || value > fw_param_table[id].max)
+    if (!fw_param_value_ok(id, value))
         return FW_REASON_PARAM_RANGE;
     fw_param_set next = *s;
     next.v[id] = value;

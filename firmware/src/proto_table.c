@@ -21,6 +21,7 @@ const proto_enum_entry proto_fault_names[] = {
     {FW_FAULT_ESTOP, "estop"},
     {FW_FAULT_UNDERRUN, "underrun"},
     {FW_FAULT_PLANT, "plant"},
+    {FW_FAULT_HARDWARE, "hardware"},
     {0, 0},
 };
 
@@ -96,7 +97,12 @@ const proto_def proto_table[PM_COUNT] = {
     {PM_DISABLE, 0x07, "DISABLE", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
      "De-energise the drives (only at rest). The slides keep their zero."},
     {PM_HOME, 0x08, "HOME", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
-     "Drive each slide to its low limit switch, back off, set its zero; then go to the home pose."},
+     "Find each slide's homing switch (pressed at and below home_sw_k, released above: a reference "
+     "the slides pass in legitimate poses, not an end of travel): a slide that starts on it first "
+     "moves up off it by homing_backoff; each seeks down at homing_speed to the press, brakes, and "
+     "creeps up to the release edge, where its coordinate is set. Then all six go to the home pose. "
+     "Once homed, a switch that disagrees with the step count by more than 0.5 mm latches a limit "
+     "fault."},
     {PM_CLEAR_FAULT, 0x09, "CLEAR_FAULT", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
      "Leave the fault or e-stop state (the e-stop input must be closed). The drives stay off."},
     {PM_POSE_A, 0x0A, "POSE_A", PROTO_TO_CONTROLLER, 7, 3,
@@ -135,8 +141,8 @@ const proto_def proto_table[PM_COUNT] = {
      {{"state", PF_U8, 0, 0, FW_STATE_COUNT - 1, "", 1.0, proto_state_names, "controller state"},
       {"fault", PF_U8, 1, 0, FW_FAULT_COUNT - 1, "", 1.0, proto_fault_names, "latched fault"},
       {"flags", PF_U8, 2, 0, 255, "", 1.0, 0,
-       "bit 0 homed, 1 drives enabled, 2 e-stop input open, 3 a limit switch pressed, "
-       "4 CAN error passive"},
+       "bit 0 homed, 1 drives enabled, 2 e-stop input open, 3 a high-end switch pressed or (once "
+       "homed) a homing switch disagreeing with the step count, 4 CAN error passive"},
       {"queue_depth", PF_U8, 3, 0, 255, "", 1.0, 0, "trajectory points waiting"},
       {"queue_free", PF_U8, 4, 0, 255, "", 1.0, 0, "trajectory points that may still be sent"},
       {"last_seq", PF_U8, 5, 0, 255, "", 1.0, 0, "last accepted sequence number"},

@@ -33,6 +33,7 @@ int stepgen_init(stepgen *sg, const stepgen_config *cfg, const int32_t position[
     sg->cfg = *cfg;
     atomic_init(&sg->head, 0u);
     atomic_init(&sg->tail, 0u);
+    atomic_init(&sg->halted, false);
     for (int i = 0; i < STEPGEN_AXES; ++i) {
         sg->ax[i].position = position[i];
         sg->ax[i].forward = true;
@@ -108,6 +109,9 @@ static void begin_segment(stepgen *sg, const int32_t target[STEPGEN_AXES])
 stepgen_output stepgen_tick(stepgen *sg)
 {
     stepgen_output out = {0, sg->forward_mask, false};
+    /* A byte load: on the one core, the e-stop interrupt's store is seen by the next tick. */
+    if (atomic_load_explicit(&sg->halted, memory_order_relaxed))
+        return out;
     if (!sg->running) {
         int32_t target[STEPGEN_AXES];
         if (!pop(sg, target))
@@ -140,11 +144,21 @@ bool stepgen_idle(const stepgen *sg)
     return !sg->running && stepgen_queued(sg) == 0;
 }
 
+void stepgen_halt(stepgen *sg)
+{
+    atomic_store(&sg->halted, true);
+}
+
 void stepgen_abort(stepgen *sg)
 {
+    stepgen_halt(sg);
+    /* The halt before any change, as the step interrupt on this core would see them. */
+    atomic_signal_fence(memory_order_seq_cst);
     sg->running = false;
     atomic_store_explicit(&sg->tail, atomic_load_explicit(&sg->head, memory_order_acquire),
                           memory_order_release);
+    /* The queue is empty and no segment runs: nothing to step when the ticks resume. */
+    atomic_store(&sg->halted, false);
 }
 
 int stepgen_set_position(stepgen *sg, const int32_t position[STEPGEN_AXES])

@@ -105,7 +105,8 @@ static int usage(const char *why)
 {
     fprintf(stderr, "tse-sim: %s\nusage: tse-sim --iface IFACE --node N [--params FILE] [--start S]\n"
                     "  --params FILE  where the controller keeps its parameters (PARAM_SAVE)\n"
-                    "  --start S      slide positions at power-up [m] (default 0.05)\n", why);
+                    "  --start S      slide positions at power-up [m] (default 0.05: below the homing\n"
+                    "                 switches at 0.2 m, so homing first leaves them)\n", why);
     return 2;
 }
 
@@ -158,11 +159,15 @@ int main(int argc, char **argv)
         fprintf(stderr, "tse-sim: the controller did not start\n");
         return 1;
     }
-    /* The plant follows the controller's parameters (stroke, steps per metre, limits). */
+    /* The plant follows the controller's parameters (stroke, steps per metre, limits, where the
+     * homing switches sit, the drivers' timing the controller programmed in fw_init). */
     const double starts[6] = {start, start, start, start, start, start};
-    const plant_config pc = {(double)s.fw.params.v[FP_STEPS_PER_M], (double)s.fw.params.v[FP_SLIDE_VMAX] * 1e-6,
-                             (double)s.fw.params.v[FP_SLIDE_AMAX] * 1e-6, 0.05, STEP_HZ,
-                             s.fw.sg.cfg.min_step_interval, s.fw.sg.cfg.dir_setup_ticks};
+    const fw_param_set *fp = &s.fw.params;
+    plant_config pc = {(double)fp->v[FP_STEPS_PER_M], (double)fp->v[FP_SLIDE_VMAX] * 1e-6,
+                       (double)fp->v[FP_SLIDE_AMAX] * 1e-6, 0.05, STEP_HZ, s.fw.sg.cfg.min_step_interval,
+                       (uint32_t)fp->v[FP_STEP_PULSE_NS], (uint32_t)fp->v[FP_DIR_SETUP_NS], {0}};
+    for (int k = 0; k < 6; ++k)
+        pc.home_sw[k] = (double)fp->v[FP_HOME_SW_1 + k] * 1e-6;
     plant_init(&s.plant, &pc, &s.fw.geom, starts);
     s.last_state = FW_STATE_BOOT;
 

@@ -11,9 +11,16 @@ static int can_send(void *ctx, const hal_can_frame *fr)
     return 0;
 }
 
+static void hook(fake_hal *f, fake_hook_point at)
+{
+    if (f->hook)
+        f->hook(f->hook_arg, at);
+}
+
 static int can_receive(void *ctx, hal_can_frame *fr)
 {
     fake_hal *f = ctx;
+    hook(f, FAKE_AT_RECEIVE);
     if (f->rx_count == 0)
         return 0;
     *fr = f->rx[f->rx_head];
@@ -24,6 +31,7 @@ static int can_receive(void *ctx, hal_can_frame *fr)
 
 static void can_state(void *ctx, hal_can_state *st)
 {
+    hook(ctx, FAKE_AT_CAN_STATE);
     *st = ((fake_hal *)ctx)->can_state;
 }
 
@@ -45,7 +53,17 @@ static void pulse(void *ctx, uint8_t mask)
 
 static void enable(void *ctx, bool on)
 {
+    if (on)
+        hook(ctx, FAKE_AT_ENABLE);
     ((fake_hal *)ctx)->enabled = on;
+}
+
+static void timing(void *ctx, uint32_t pulse_ns, uint32_t dir_setup_ns)
+{
+    fake_hal *f = ctx;
+    f->pulse_ns = pulse_ns;
+    f->dir_setup_ns = dir_setup_ns;
+    ++f->timing_calls;
 }
 
 static uint16_t limits(void *ctx)
@@ -53,7 +71,7 @@ static uint16_t limits(void *ctx)
     fake_hal *f = ctx;
     uint16_t m = f->forced_limits;
     for (int k = 0; k < 6; ++k)
-        if (f->steps[k] <= f->switch_at)
+        if (f->steps[k] <= f->switch_at[k])
             m |= (uint16_t)(1u << k);
     return m;
 }
@@ -65,6 +83,7 @@ static bool estop(void *ctx)
 
 static uint64_t now(void *ctx)
 {
+    hook(ctx, FAKE_AT_CLOCK);
     return ((fake_hal *)ctx)->now_us;
 }
 
@@ -90,11 +109,12 @@ static int save(void *ctx, const void *buf, size_t len)
 void fake_hal_init(fake_hal *f, fw_hal *hal)
 {
     memset(f, 0, sizeof *f);
-    f->switch_at = 0;
-    for (int k = 0; k < 6; ++k)
-        f->steps[k] = 250000 + 1000 * k; /* somewhere mid-stroke at power-up */
+    for (int k = 0; k < 6; ++k) {
+        f->switch_at[k] = FAKE_SWITCH_AT;
+        f->steps[k] = 384000 + 1000 * k; /* somewhere above the switches at power-up */
+    }
     hal->can = (hal_can){f, can_send, can_receive, can_state};
-    hal->stepper = (hal_stepper){f, set_dir, pulse, enable};
+    hal->stepper = (hal_stepper){f, set_dir, pulse, enable, timing};
     hal->inputs = (hal_inputs){f, limits, estop};
     hal->clock = (hal_clock){f, now};
     hal->storage = (hal_storage){f, load, save};

@@ -1,6 +1,8 @@
 /* A fake of every hal/ interface with a minimal plant: six slides that integrate the steps they
- * are given, low limit switches at a hidden physical zero, an e-stop input, a CAN bus made of two
- * frame queues, and a clock the test advances.  For controller tests on the host. */
+ * are given (their true position, in steps from s = 0), low homing switches pressed at and below
+ * switch_at, an e-stop input, a CAN bus made of two frame queues, and a clock the test advances.
+ * A hook lets a test act in the middle of the controller's work (an interrupt arriving while it
+ * reads the clock, the bus or the bus state).  For controller tests on the host. */
 #ifndef TESTS_FAKE_HAL_H
 #define TESTS_FAKE_HAL_H
 
@@ -10,6 +12,15 @@
 #include "fw/controller.h"
 
 #define FAKE_QUEUE 4096
+/* Where the switches sit by default: 0.2 m at 1.28M steps/m, the default home_sw_k. */
+#define FAKE_SWITCH_AT 256000
+
+typedef enum {
+    FAKE_AT_CLOCK,     /* a clock read */
+    FAKE_AT_RECEIVE,   /* a frame receive */
+    FAKE_AT_CAN_STATE, /* a bus state read */
+    FAKE_AT_ENABLE     /* the drives being switched on, before the output changes */
+} fake_hook_point;
 
 typedef struct {
     hal_can_frame rx[FAKE_QUEUE]; /* to the controller */
@@ -18,13 +29,19 @@ typedef struct {
     unsigned tx_count;
     hal_can_state can_state;
 
-    int32_t steps[6];      /* physical position in steps from the hidden zero */
-    int32_t switch_at;     /* a low switch is pressed at or below this many steps */
+    int32_t steps[6];      /* true position in steps from s = 0 */
+    int32_t switch_at[6];  /* a low switch is pressed at or below this many steps */
     uint8_t forward_mask;
     bool enabled;
     bool estop_open;
     uint16_t forced_limits;
     uint64_t pulses;
+    uint32_t pulse_ns, dir_setup_ns; /* as last programmed through hal_stepper.timing */
+    uint32_t timing_calls;
+
+    /* Called at the points of fake_hook_point (NULL: nothing). */
+    void (*hook)(void *arg, fake_hook_point at);
+    void *hook_arg;
 
     uint64_t now_us;
 

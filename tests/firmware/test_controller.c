@@ -1,5 +1,6 @@
 /* The controller through its CAN interface, on the fake HAL: every command in every state,
- * atomic staging, malformed frames, watchdog, e-stop, limit and bus-off faults, parameters. */
+ * atomic staging, malformed frames, watchdog, e-stop (command, input and interrupt), the switches'
+ * meaning outside homing, bus-off, parameters and the drivers' timing. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -22,7 +23,7 @@ static void start(void)
     fw_hal hal;
     fake_hal_init(&F, &hal);
     for (int k = 0; k < 6; ++k)
-        F.steps[k] = 3000 + 100 * k; /* near the switches: homing is short */
+        F.steps[k] = FAKE_SWITCH_AT + 3000 + 100 * k; /* just above the switches: homing is short */
     const fw_config cfg = {1, 1000, 100000};
     assert_int_equal(fw_init(&C, &hal, &cfg), 0);
     seq = 1;
@@ -239,14 +240,15 @@ static void test_move_lands_on_target_steps(void **state)
     for (int i = 0; i < 100 && C.state != FW_STATE_IDLE; ++i)
         run(100);
     assert_int_equal(C.state, FW_STATE_IDLE);
-    /* The slides sit on the target's solution, to the step, counted from the switch edge (the
-     * zero is the first step off the switch). */
+    /* The slides sit on the target's solution, to the step, in true coordinates: the fake's
+     * switches are pressed at and below 256000 steps, which is where home_sw_k = 0.2 m puts them at
+     * 1.28M steps/m, so the edge homing latches is the true step 256001. */
     tse_ik_result r;
     const double wire[6] = {0.1, -0.05, 1.1, 0.1, -0.05, 0.2};
     assert_int_equal(tse_ik(&C.geom, wire, NULL, &r), TSE_OK);
     for (int k = 0; k < 6; ++k) {
-        const long want = lround(r.q[k] * (double)C.params.v[FP_STEPS_PER_M]);
-        assert_int_equal(F.steps[k] - F.switch_at - 1, want);
+        const long want = lround(r.q[k] * 1280000.0);
+        assert_int_equal(F.steps[k], want);
     }
 }
 
@@ -302,7 +304,7 @@ static void test_blended_moves(void **state)
     tse_ik_result r;
     assert_int_equal(tse_ik(&C.geom, second, NULL, &r), TSE_OK);
     for (int k = 0; k < 6; ++k)
-        assert_int_equal(F.steps[k] - F.switch_at - 1, lround(r.q[k] * (double)C.params.v[FP_STEPS_PER_M]));
+        assert_int_equal(F.steps[k], lround(r.q[k] * 1280000.0));
 }
 
 static void test_staging_is_atomic(void **state)
@@ -494,19 +496,345 @@ static void test_estop_cuts_within_a_tick(void **state)
     assert_int_equal(C.state, FW_STATE_DISABLED);
 }
 
-static void test_limit_and_bus_off(void **state)
+/* What the switches mean outside homing.  The high-end switches are hard limits.  A low (homing)
+ * switch, once homed, cross-checks the step count: pressed above home_sw_k + 0.5 mm or released
+ * below home_sw_k - 0.5 mm is lost steps or a broken switch; before homing it means nothing. */
+static void test_switches_outside_homing(void **state)
 {
     (void)state;
+    /* A high-end switch while moving: a controlled stop, then the limit fault, the zero dropped. */
     reach(FW_STATE_MOVING);
-    F.forced_limits = 1u << 3;
+    F.forced_limits = 1u << (8 + 3);
+    run(10);
+    assert_int_equal(C.state, FW_STATE_STOPPING);
     run(500);
     assert_int_equal(C.state, FW_STATE_FAULT);
     assert_int_equal(C.fault, FW_FAULT_LIMIT);
     assert_false(C.homed);
+    /* Slide 4's homing switch pressed while its count says about 0.4 m, far above its 0.2 m. */
+    reach(FW_STATE_MOVING);
+    assert_true(F.steps[3] > FAKE_SWITCH_AT + 640);
+    F.forced_limits = 1u << 3;
+    run(10);
+    assert_int_equal(C.state, FW_STATE_STOPPING);
+    run(500);
+    assert_int_equal(C.state, FW_STATE_FAULT);
+    assert_int_equal(C.fault, FW_FAULT_LIMIT);
+    assert_false(C.homed);
+    /* Before homing a pressed homing switch is only where the slide is: no fault, no flag. */
+    start();
+    cmd(PM_ENABLE);
+    run(20);
+    F.forced_limits = 0x3F;
+    unsigned from = F.tx_count;
+    run(300);
+    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(C.fault, FW_FAULT_NONE);
+    const hal_can_frame *st = fake_last(&F, 0x20, from);
+    assert_non_null(st);
+    assert_int_equal(st->data[2] & 8u, 0);
+    /* The STATUS flag is set by a high-end switch (which also faults, as the controller is active). */
+    F.forced_limits = 1u << 8;
+    from = F.tx_count;
+    run(300);
+    st = fake_last(&F, 0x20, from);
+    assert_non_null(st);
+    assert_int_equal(st->data[2] & 8u, 8u);
+    assert_int_equal(C.fault, FW_FAULT_LIMIT);
+}
+
+/* A parameter change over the bus.  Returns 'a' or 'r' (with the reason and the field named). */
+static char set_param(uint16_t id, int32_t value, uint8_t *reason, uint8_t *field)
+{
+    const unsigned from = F.tx_count;
+    const int32_t v[2] = {id, value};
+    send(PM_PARAM_SET, v);
+    fw_poll(&C);
+    const char got = answer(from, 0x10, reason);
+    const hal_can_frame *r = fake_last(&F, 0x03, from);
+    if (got == 'r' && field)
+        *field = r->data[5];
+    return got;
+}
+
+/* The cross-check's tolerance is 0.5 mm, 640 steps at 1.28M steps/m.  Switches placed 0.3 mm
+ * above, 0.7 mm above, 0.3 mm below and 0.7 mm below where homing leaves slides 1 to 4 (home_s);
+ * then each switch is moved by 1 mm across its slide, as lost steps would move the slide: within
+ * the tolerance the disagreement is let pass, beyond it it is a limit fault. */
+static void test_switch_tolerance(void **state)
+{
+    (void)state;
+    start();
+    const long at_home = lround(C.geom.home_s * 1280000.0); /* steps at home */
+    const int32_t home_um = (int32_t)lround(C.geom.home_s * 1e6);
+    const int32_t sw_um[4] = {home_um - 300, home_um - 700, home_um + 300, home_um + 700};
+    for (int k = 0; k < 4; ++k) {
+        assert_int_equal(set_param((uint16_t)(FP_HOME_SW_1 + k), sw_um[k], NULL, NULL), 'a');
+        F.switch_at[k] = (int32_t)((int64_t)sw_um[k] * 128 / 100); /* pressed at and below */
+        F.steps[k] = F.switch_at[k] + 3000;
+    }
+    for (int round = 0; round < 2; ++round) {
+        if (round == 1) {
+            /* Again from a fresh homing, for slide 4 (the fault of slide 2 ended the first). */
+            for (int k = 0; k < 4; ++k)
+                F.switch_at[k] = (int32_t)((int64_t)sw_um[k] * 128 / 100);
+            cmd(PM_CLEAR_FAULT);
+            run(10);
+        }
+        home();
+        for (int k = 0; k < 6; ++k)
+            assert_int_equal(F.steps[k], at_home);
+        run(100);
+        assert_int_equal(C.state, FW_STATE_IDLE);
+        if (round == 0) {
+            /* Slide 1 (0.3 mm above its switch) now reads pressed: within the tolerance. */
+            F.switch_at[0] += 1280;
+            assert_true(F.steps[0] <= F.switch_at[0]);
+            /* Slide 3 (0.3 mm below) now reads released: within the tolerance. */
+            F.switch_at[2] -= 1280;
+            assert_true(F.steps[2] > F.switch_at[2]);
+            run(100);
+            assert_int_equal(C.state, FW_STATE_IDLE);
+            assert_true(C.homed);
+            /* Slide 2 (0.7 mm above) reads pressed: beyond it. */
+            F.switch_at[1] += 1280;
+        } else {
+            /* Slide 4 (0.7 mm below) reads released: beyond it. */
+            F.switch_at[3] -= 1280;
+        }
+        run(10);
+        assert_int_equal(C.state, FW_STATE_FAULT);
+        assert_int_equal(C.fault, FW_FAULT_LIMIT);
+        assert_false(C.homed);
+    }
+}
+
+/* Homing from below the switches: every slide starts pressed, leaves its switch at the homing
+ * speed, comes back, and its coordinate is set at the edge, so the slides end at home_s to the
+ * step in true coordinates. */
+static void test_homing_from_below(void **state)
+{
+    (void)state;
+    start();
+    for (int k = 0; k < 6; ++k)
+        F.steps[k] = FAKE_SWITCH_AT - 20000 - 1000 * k; /* 16 to 20 mm below */
+    home();
+    for (int k = 0; k < 6; ++k)
+        assert_int_equal(F.steps[k], lround(C.geom.home_s * 1280000.0));
+}
+
+/* Each slide's own switch position: slide 6's switch 5 cm higher than the others. */
+static void test_homing_per_slide_switch(void **state)
+{
+    (void)state;
+    start();
+    assert_int_equal(set_param(FP_HOME_SW_6, 250000, NULL, NULL), 'a');
+    F.switch_at[5] = 320000; /* 0.25 m */
+    F.steps[5] = 330000;
+    home();
+    for (int k = 0; k < 6; ++k)
+        assert_int_equal(F.steps[k], lround(C.geom.home_s * 1280000.0));
+}
+
+static void test_bus_off(void **state)
+{
+    (void)state;
     reach(FW_STATE_IDLE);
     F.can_state.bus_off = true;
     run(10);
     assert_int_equal(C.fault, FW_FAULT_BUS_OFF);
+}
+
+/* The drivers' timing: programmed through hal_stepper.timing at start-up and on every accepted
+ * set; DIR set-up turned into whole step interrupts (here 100 kHz, 10 us each), rounded up; a STEP
+ * pulse refused unless it ends within its 10 us tick and leaves a low time as long as the high
+ * time before the same slide's next step. */
+static void test_driver_timing(void **state)
+{
+    (void)state;
+    start();
+    assert_int_equal(F.timing_calls, 1);
+    assert_int_equal(F.pulse_ns, 2000);
+    assert_int_equal(F.dir_setup_ns, 5000);
+    assert_int_equal(C.sg.cfg.dir_setup_ticks, 1); /* 5 us is half a tick: one */
+    const struct {
+        int32_t ns;
+        uint32_t ticks;
+    } setups[] = {{25000, 3}, {20000, 2}, {20001, 3}, {1, 1}, {0, 1}};
+    for (size_t i = 0; i < sizeof setups / sizeof setups[0]; ++i) {
+        assert_int_equal(set_param(FP_DIR_SETUP_NS, setups[i].ns, NULL, NULL), 'a');
+        assert_int_equal(C.sg.cfg.dir_setup_ticks, setups[i].ticks);
+        assert_int_equal(F.dir_setup_ns, (uint32_t)setups[i].ns);
+    }
+    assert_int_equal(F.timing_calls, 6);
+    /* 1 ms is the whole 100-tick segment: no room for a step after a direction change. */
+    uint8_t reason = 0, field = 0;
+    assert_int_equal(set_param(FP_DIR_SETUP_NS, 1000000, &reason, &field), 'r');
+    assert_int_equal(reason, FW_REASON_PARAM_SET);
+    assert_int_equal(field, FP_DIR_SETUP_NS);
+    assert_int_equal(C.params.v[FP_DIR_SETUP_NS], 0);
+    assert_int_equal(F.timing_calls, 6);
+    /* step_rate_max 200k at 100 kHz: steps may come on consecutive 10 us ticks, so 5 us high and
+     * 5 us low is the longest pulse. */
+    assert_int_equal(set_param(FP_STEP_PULSE_NS, 5000, NULL, NULL), 'a');
+    assert_int_equal(F.pulse_ns, 5000);
+    assert_int_equal(set_param(FP_STEP_PULSE_NS, 5001, &reason, &field), 'r');
+    assert_int_equal(reason, FW_REASON_PARAM_SET);
+    assert_int_equal(field, FP_STEP_PULSE_NS);
+    assert_int_equal(C.params.v[FP_STEP_PULSE_NS], 5000);
+    assert_int_equal(F.pulse_ns, 5000);
+    /* step_rate_max 50k: two ticks between steps, 20 us; the pulse must still end within its
+     * own 10 us tick, so 9999 ns fits and 10000 does not. */
+    assert_int_equal(set_param(FP_STEP_RATE_MAX, 50000, NULL, NULL), 'a');
+    assert_int_equal(C.sg.cfg.min_step_interval, 2);
+    assert_int_equal(set_param(FP_STEP_PULSE_NS, 9999, NULL, NULL), 'a');
+    assert_int_equal(set_param(FP_STEP_PULSE_NS, 10000, &reason, &field), 'r');
+    assert_int_equal(reason, FW_REASON_PARAM_SET);
+    /* Nor may the step rate come back up under the long pulse. */
+    assert_int_equal(set_param(FP_STEP_RATE_MAX, 200000, &reason, &field), 'r');
+    assert_int_equal(field, FP_STEP_RATE_MAX);
+    assert_int_equal(C.sg.cfg.min_step_interval, 2);
+    /* The CAN rate: one of four, stored only. */
+    assert_int_equal(set_param(FP_CAN_KBPS, 300, &reason, &field), 'r');
+    assert_int_equal(reason, FW_REASON_PARAM_RANGE);
+    assert_int_equal(field, FP_CAN_KBPS);
+    assert_int_equal(set_param(FP_CAN_KBPS, 250, NULL, NULL), 'a');
+    assert_int_equal(C.params.v[FP_CAN_KBPS], 250);
+}
+
+/* A change of a switch position drops the zero: it was set against the old one. */
+static void test_switch_change_needs_homing(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    cmd(PM_DISABLE);
+    run(10);
+    assert_int_equal(C.state, FW_STATE_DISABLED);
+    assert_true(C.homed);
+    assert_int_equal(set_param(FP_WATCHDOG_MS, 400, NULL, NULL), 'a');
+    assert_true(C.homed);
+    assert_int_equal(set_param(FP_HOME_SW_2, 210000, NULL, NULL), 'a');
+    assert_false(C.homed);
+}
+
+/* The e-stop interrupt (fw_estop_isr) from the fake HAL, once, at a chosen point. */
+static bool isr_armed;
+static fake_hook_point isr_at;
+static unsigned isr_head; /* setpoints pushed when it came */
+
+static void estop_interrupt(void *arg, fake_hook_point at)
+{
+    if (!isr_armed || at != isr_at)
+        return;
+    isr_armed = false;
+    fw_estop_isr(arg);
+    isr_head = atomic_load(&C.sg.head);
+}
+
+static void arm_interrupt(fake_hook_point at)
+{
+    F.hook = estop_interrupt;
+    F.hook_arg = &C;
+    isr_at = at;
+    isr_armed = true;
+}
+
+/* The interrupt inside a control tick, after it began and before it queues its setpoint (while
+ * it reads the bus state, or the clock): the setpoint the tick still pushes is never stepped, the
+ * drives are off at once, and the next poll (or tick) completes the e-stop. */
+static void test_estop_interrupt_mid_tick(void **state)
+{
+    (void)state;
+    const fake_hook_point points[] = {FAKE_AT_CAN_STATE, FAKE_AT_CLOCK, FAKE_AT_CAN_STATE};
+    for (int i = 0; i < 3; ++i) {
+        reach(FW_STATE_MOVING);
+        run(500);
+        heartbeat();
+        fw_poll(&C); /* the poll before the tick, as fake_run does it */
+        const uint64_t pulses = F.pulses;
+        assert_true(F.enabled);
+        arm_interrupt(points[i]);
+        fw_control_tick(&C);
+        assert_false(isr_armed);                          /* it came */
+        assert_false(F.enabled);                          /* drives off in the interrupt */
+        assert_true(atomic_load(&C.sg.head) > isr_head); /* and the tick pushed after it */
+        assert_int_equal(C.state, FW_STATE_MOVING);       /* not completed yet */
+        for (int t = 0; t < 300; ++t)
+            fw_step_tick(&C);
+        assert_true(F.pulses == pulses);
+        if (i < 2)
+            fw_poll(&C);
+        else
+            fw_control_tick(&C); /* the tick completes it too */
+        assert_int_equal(C.state, FW_STATE_ESTOP);
+        assert_int_equal(C.fault, FW_FAULT_ESTOP);
+        assert_true(stepgen_idle(&C.sg));
+        assert_false(C.homed);
+        assert_false(F.enabled);
+        fake_run(&F, &C, 100);
+        assert_true(F.pulses == pulses);
+        F.hook = NULL;
+    }
+}
+
+/* The interrupt in the middle of a segment: the steps left of it never come. */
+static void test_estop_interrupt_mid_segment(void **state)
+{
+    (void)state;
+    reach(FW_STATE_MOVING);
+    run(500);
+    heartbeat();
+    fw_poll(&C);
+    fw_control_tick(&C);
+    uint64_t pulses = F.pulses;
+    for (int t = 0; t < 50; ++t)
+        fw_step_tick(&C);
+    assert_true(C.sg.running);
+    assert_true(F.pulses > pulses); /* it was stepping */
+    pulses = F.pulses;
+    fw_estop_isr(&C);
+    for (int t = 0; t < 500; ++t)
+        fw_step_tick(&C);
+    assert_true(F.pulses == pulses);
+    fw_control_tick(&C);
+    assert_int_equal(C.state, FW_STATE_ESTOP);
+    assert_false(F.enabled);
+}
+
+/* The interrupt while a poll reads a frame: the frame after it meets the e-stop state, so an
+ * ENABLE is refused and the drives stay off. */
+static void test_estop_interrupt_mid_poll(void **state)
+{
+    (void)state;
+    reach(FW_STATE_DISABLED);
+    const unsigned from = F.tx_count;
+    cmd(PM_ENABLE);
+    arm_interrupt(FAKE_AT_RECEIVE);
+    fw_poll(&C);
+    F.hook = NULL;
+    assert_false(isr_armed);
+    uint8_t reason = 0;
+    assert_int_equal(answer(from, 0x06, &reason), 'r');
+    assert_int_equal(reason, FW_REASON_STATE);
+    assert_int_equal(C.state, FW_STATE_ESTOP);
+    assert_false(F.enabled);
+}
+
+/* The interrupt just as an ENABLE switches the drives on (after the command was taken, before the
+ * output changes): the drives end up off all the same, and the next tick completes the e-stop. */
+static void test_estop_interrupt_during_enable(void **state)
+{
+    (void)state;
+    reach(FW_STATE_DISABLED);
+    cmd(PM_ENABLE);
+    arm_interrupt(FAKE_AT_ENABLE);
+    fw_poll(&C);
+    F.hook = NULL;
+    assert_false(isr_armed);
+    assert_false(F.enabled);
+    fw_control_tick(&C);
+    assert_int_equal(C.state, FW_STATE_ESTOP);
+    assert_false(F.enabled);
 }
 
 static void test_params_over_can(void **state)
@@ -578,7 +906,17 @@ int main(void)
         cmocka_unit_test(test_watchdog),
         cmocka_unit_test(test_watchdog_during_move_stops_smoothly),
         cmocka_unit_test(test_estop_cuts_within_a_tick),
-        cmocka_unit_test(test_limit_and_bus_off),
+        cmocka_unit_test(test_switches_outside_homing),
+        cmocka_unit_test(test_switch_tolerance),
+        cmocka_unit_test(test_homing_from_below),
+        cmocka_unit_test(test_homing_per_slide_switch),
+        cmocka_unit_test(test_bus_off),
+        cmocka_unit_test(test_driver_timing),
+        cmocka_unit_test(test_switch_change_needs_homing),
+        cmocka_unit_test(test_estop_interrupt_mid_tick),
+        cmocka_unit_test(test_estop_interrupt_mid_segment),
+        cmocka_unit_test(test_estop_interrupt_mid_poll),
+        cmocka_unit_test(test_estop_interrupt_during_enable),
         cmocka_unit_test(test_params_over_can),
         cmocka_unit_test(test_status_period),
     };

@@ -48,6 +48,60 @@ static void test_set_one(void **state)
     assert_int_equal(s.v[FP_WATCHDOG_MS], 250);
 }
 
+/* The parameters the board needs: their defaults, ranges and the checks on the set. */
+static void test_board_parameters(void **state)
+{
+    (void)state;
+    fw_param_set s, before;
+    fw_params_default(&s);
+    /* Appended after homing_backoff (ids travel on the wire). */
+    assert_int_equal(FP_HOME_SW_1, FP_HOMING_BACKOFF + 1);
+    assert_int_equal(FP_CAN_KBPS, FP_COUNT - 1);
+    for (int k = 0; k < 6; ++k)
+        assert_int_equal(s.v[FP_HOME_SW_1 + k], 200000);
+    assert_int_equal(s.v[FP_STEP_PULSE_NS], 2000);
+    assert_int_equal(s.v[FP_DIR_SETUP_NS], 5000);
+    assert_int_equal(s.v[FP_CAN_KBPS], 500);
+    before = s;
+    /* CAN: four rates, anything else out of range, naming the parameter. */
+    const int32_t rates[] = {125, 250, 500, 1000}, bad_rates[] = {124, 126, 300, 800, 999, 1001, 0};
+    for (size_t i = 0; i < sizeof rates / sizeof rates[0]; ++i) {
+        assert_int_equal(fw_params_set_one(&s, FP_CAN_KBPS, rates[i]), 0);
+        assert_int_equal(s.v[FP_CAN_KBPS], rates[i]);
+    }
+    for (size_t i = 0; i < sizeof bad_rates / sizeof bad_rates[0]; ++i) {
+        assert_int_equal(fw_params_set_one(&s, FP_CAN_KBPS, bad_rates[i]), FW_REASON_PARAM_RANGE);
+        fw_param_set t = s;
+        t.v[FP_CAN_KBPS] = bad_rates[i];
+        assert_int_equal(fw_params_check(&t), FP_CAN_KBPS);
+    }
+    assert_int_equal(s.v[FP_CAN_KBPS], 1000);
+    /* A switch outside the stroke [0, 0.9 m] is refused, naming it. */
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 900001), FW_REASON_PARAM_SET);
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 900000), 0);
+    fw_param_set t = s;
+    t.v[FP_HOME_SW_5] = 950000;
+    assert_int_equal(fw_params_check(&t), FP_HOME_SW_5);
+    /* The switches reachable together.  Prototype: l0 = 0.2647 * 1.727 = 0.45714 m, alpha_max =
+     * asin(1.619 / 1.727), cos alpha_max = sqrt(1 - 0.937464^2) = 0.348083, so a scissor's width
+     * must stay >= 2 l0 cos alpha_max = 0.318243 m; with eta = 30 deg, w = sqrt(sA^2 + sB^2 +
+     * sA sB): both slides at 0.1835 m give 0.317831 (too narrow), at 0.1840 m 0.318697. */
+    s = before;
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_1, 183500), 0); /* with B at 0.2: 0.332 */
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_2, 183500), FW_REASON_PARAM_SET);
+    t = s;
+    t.v[FP_HOME_SW_2] = 183500;
+    assert_int_equal(fw_params_check(&t), FP_HOME_SW_1);
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_2, 184000), 0);
+    /* Per scissor, not per slide: 0.1 m and 0.3 m give sqrt(0.13) = 0.3606. */
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_4, 300000), 0);
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 100000), 0);
+    /* The timing parameters' own ranges (what fits the step interrupt is the controller's check). */
+    assert_int_equal(fw_params_set_one(&s, FP_STEP_PULSE_NS, 99), FW_REASON_PARAM_RANGE);
+    assert_int_equal(fw_params_set_one(&s, FP_DIR_SETUP_NS, -1), FW_REASON_PARAM_RANGE);
+    assert_int_equal(fw_params_set_one(&s, FP_DIR_SETUP_NS, 0), 0);
+}
+
 static void test_record(void **state)
 {
     (void)state;
@@ -79,6 +133,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_defaults_are_the_prototype),
         cmocka_unit_test(test_set_one),
+        cmocka_unit_test(test_board_parameters),
         cmocka_unit_test(test_record),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -169,12 +169,52 @@ static void test_abort(void **state)
     assert_true(pos[0] > 0 && pos[0] < 90);
 }
 
+/* Halt mid-segment: not a step and no change of state for as long as it lasts, pushes only wait;
+ * abort then drops all of it and ends the halt, and stepping resumes from the steps emitted. */
+static void test_halt(void **state)
+{
+    (void)state;
+    stepgen sg;
+    observer o;
+    init(&sg, &o);
+    const int32_t t[6] = {90, -90, 90, -90, 90, -90};
+    stepgen_push(&sg, t);
+    for (int k = 0; k < TICKS / 2; ++k)
+        observe(&o, stepgen_tick(&sg));
+    assert_true(o.pos[0] > 0);
+    stepgen_halt(&sg);
+    const stepgen frozen = sg;
+    const int32_t more[6] = {180, -180, 180, -180, 180, -180};
+    assert_int_equal(stepgen_push(&sg, more), 0); /* the producer may still push */
+    for (int k = 0; k < 3 * TICKS; ++k) {
+        const stepgen_output out = stepgen_tick(&sg);
+        assert_int_equal(out.step_mask, 0);
+        assert_false(out.dir_changed);
+    }
+    assert_int_equal(sg.tick, frozen.tick);
+    assert_memory_equal(sg.ax, frozen.ax, sizeof sg.ax);
+    assert_int_equal(atomic_load(&sg.tail), atomic_load(&frozen.tail));
+    assert_false(stepgen_idle(&sg));
+    stepgen_abort(&sg);
+    assert_true(stepgen_idle(&sg));
+    int32_t pos[6];
+    stepgen_positions(&sg, pos);
+    assert_memory_equal(pos, o.pos, sizeof pos);
+    /* Not halted any more: the next setpoint is stepped, from where the slides are. */
+    stepgen_push(&sg, t);
+    for (int k = 0; k < TICKS; ++k)
+        observe(&o, stepgen_tick(&sg));
+    for (int i = 0; i < 6; ++i)
+        assert_int_equal(o.pos[i], t[i]);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_capacity),     cmocka_unit_test(test_bad_config),
         cmocka_unit_test(test_exact_random), cmocka_unit_test(test_overrun_carries),
         cmocka_unit_test(test_queue_and_idle), cmocka_unit_test(test_abort),
+        cmocka_unit_test(test_halt),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,6 +1,9 @@
-/* The firmware against the simulator's plant, without a bus: homing from power-up, moves,
- * blends, stops, an e-stop and a timed trajectory must never break a physical invariant (stroke,
- * speed, acceleration, pulse timing), and the plate must end on its targets (10 um, 1e-5 rad). */
+/* The firmware against the simulator's plant, without a bus: homing from power-up (below and above
+ * the switches), moves, blends, stops, an e-stop and a timed trajectory must never break a
+ * physical invariant (stroke, speed, acceleration, pulse timing), and the plate must end on its
+ * targets (10 um, 1e-5 rad).  Homing must honour each switch's position and take the time of its
+ * distances at the homing speed; once homed, the switches catch lost steps.  And the plant's own
+ * switch and timing checks, alone. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -19,6 +22,8 @@ static fake_hal F;
 static fw_controller C;
 static tse_plant P;
 static uint8_t seq = 1;
+static uint32_t homing_ms;  /* simulated time spent in HOMING by the last start() */
+static double lowest[6];    /* lowest true slide positions since start() [m] */
 
 static void run(uint32_t ms)
 {
@@ -32,11 +37,16 @@ static void run(uint32_t ms)
         F.tx_count = 0;
         fw_poll(&C);
         fw_control_tick(&C);
+        if (C.state == FW_STATE_HOMING)
+            ++homing_ms;
         for (int t = 0; t < 100; ++t) {
             fw_step_tick(&C);
             plant_tick(&P);
         }
         F.now_us += 1000;
+        for (int k = 0; k < 6; ++k)
+            if ((double)P.steps[k] / 1280000.0 < lowest[k])
+                lowest[k] = (double)P.steps[k] / 1280000.0;
         if (P.breaches)
             fail_msg("plant: %s (state %d src %d stopping %d tau %.4f of %.4f, homing %d phase %d fault %d depth %u)", P.first_breach,
                      C.state, C.src, C.stopping, (double)C.tau, (double)C.move.prof.T, C.home.active, C.home.phase, C.fault, C.traj.count);
@@ -95,7 +105,9 @@ static void assert_pose(const double want[6])
             fail_msg("angle %d: %.9f vs %.9f", k, P.pose[k], want[k]);
 }
 
-static void start(double at)
+/* The controller, its switches moved to sw_um (NULL: the defaults) by PARAM_SET while disabled,
+ * and the plant built from its parameters, the slides at s0. */
+static void boot(const double s0[6], const int32_t *sw_um)
 {
     fw_hal hal;
     fake_hal_init(&F, &hal);
@@ -104,20 +116,58 @@ static void start(double at)
     hal.stepper = plant_stepper(&P);
     hal.inputs = plant_inputs(&P);
     assert_int_equal(fw_init(&C, &hal, &cfg), 0);
-    const double s0[6] = {at, at, at, at, at, at};
-    const plant_config pc = {(double)C.params.v[FP_STEPS_PER_M], C.params.v[FP_SLIDE_VMAX] * 1e-6,
-                             C.params.v[FP_SLIDE_AMAX] * 1e-6, 0.05, 100000, C.sg.cfg.min_step_interval,
-                             C.sg.cfg.dir_setup_ticks};
+    for (int k = 0; sw_um && k < 6; ++k) {
+        const int32_t v[2] = {FP_HOME_SW_1 + k, sw_um[k]};
+        send(PM_PARAM_SET, v);
+        fw_poll(&C); /* no step tick: the plant is not built yet */
+        assert_int_equal(C.params.v[FP_HOME_SW_1 + k], sw_um[k]);
+    }
+    plant_config pc = {(double)C.params.v[FP_STEPS_PER_M], C.params.v[FP_SLIDE_VMAX] * 1e-6,
+                       C.params.v[FP_SLIDE_AMAX] * 1e-6, 0.05, 100000, C.sg.cfg.min_step_interval,
+                       (uint32_t)C.params.v[FP_STEP_PULSE_NS], (uint32_t)C.params.v[FP_DIR_SETUP_NS], {0}};
+    for (int k = 0; k < 6; ++k)
+        pc.home_sw[k] = C.params.v[FP_HOME_SW_1 + k] * 1e-6;
     plant_init(&P, &pc, &C.geom, s0);
+    for (int k = 0; k < 6; ++k)
+        lowest[k] = s0[k];
+}
+
+/* Enables and homes; the controller's slide coordinates must then be the plant's true positions
+ * to the step, and the plate at the home pose. */
+static void homing(void)
+{
     cmd(PM_ENABLE);
     run(20);
+    homing_ms = 0;
     cmd(PM_HOME);
     run(20);
     for (int t = 0; t < 120000 && C.state == FW_STATE_HOMING; t += 100)
         run(100);
     assert_int_equal(C.state, FW_STATE_IDLE);
     assert_true(C.homed);
+    int32_t count[6];
+    stepgen_positions(&C.sg, count);
+    for (int k = 0; k < 6; ++k)
+        if (llabs((long long)count[k] - (long long)P.steps[k]) > 1)
+            fail_msg("slide %d: the controller counts %d steps, the slide is at %lld", k + 1, count[k],
+                     (long long)P.steps[k]);
     assert_pose(C.geom.home_pose);
+}
+
+static void start(double at)
+{
+    const double s0[6] = {at, at, at, at, at, at};
+    boot(s0, NULL);
+    homing();
+}
+
+/* Moves the slide by `steps` behind the controller's back (lost steps), its position history
+ * along with it, so that the plant's acceleration measure sees no jump. */
+static void shift(int k, int64_t steps)
+{
+    P.steps[k] += steps;
+    for (int j = 0; j < 20; ++j)
+        P.hist[j][k] += steps;
 }
 
 static void test_moves_land_within_tolerance(void **state)
@@ -224,6 +274,190 @@ static void test_underrun_stops_smoothly(void **state)
     assert_int_equal(C.fault, FW_FAULT_UNDERRUN);
 }
 
+/* The homing time of the defaults (homing_speed 20 mm/s, slide_amax 1 m/s^2, of which homing
+ * ramps take 90 %, homing_backoff 2 mm, slide_vmax 0.15 m/s, switches at 0.2 m), derived from the
+ * distances: `travel` [m] at the homing speed, plus
+ *   - ramps: up to four starts and stops, each costing at most v / a = 20 ms;
+ *   - the creep back over the braking distance v^2 / (2 0.9 a) = 0.22 mm plus half a millimetre of
+ *     read-out lag and hysteresis, at no less than 1/64 of the homing speed (0.3125 mm/s): 2.3 s;
+ *   - the joint move to home_s over d_home [m] at 90 % of the slide speed limit, which at this
+ *     test's 100 kHz step interrupt is the step generator's: 99 steps per 1 ms segment (a tick of
+ *     DIR set-up off the 100), 90 % of it planned, 0.9 * 99000 / 1.28e6 = 0.0696 m/s (below
+ *     slide_vmax); plus 0.15 s of ramps and 0.2 s for its jerk limit;
+ *   - 0.1 s of command latency.
+ * Creeping the whole way, as homing once did from below a switch, would take travel / 0.3125 mm/s:
+ * minutes. */
+#define SLIDE_VMAX_100KHZ (0.9 * 99000.0 / 1280000.0)
+
+static double homing_bound_s(double travel, double d_home)
+{
+    const double v = 0.02, creep = v / 64.0;
+    return travel / v + 4 * 0.02 + (v * v / (2 * 0.9) + 0.5e-3) / creep + d_home / (0.9 * SLIDE_VMAX_100KHZ) +
+           0.15 + 0.2 + 0.1;
+}
+
+/* From below the switches (tse-sim's default start, 0.05 m): up 15 cm past them, back, and the
+ * edge; the coordinates are the true ones (homing() checks), in the time of the distances. */
+static void test_homing_from_below(void **state)
+{
+    (void)state;
+    start(0.05);
+    const double t = homing_ms * 1e-3, d_home = C.geom.home_s - 0.2;
+    const double bound = homing_bound_s(0.2 - 0.05 + 2 * 0.002, d_home);
+    print_message("homing from 0.05 m: %.2f s (bound %.2f s, at the creep speed %.0f s)\n", t, bound,
+                  0.15 / (0.02 / 64));
+    assert_true(t <= bound);
+    /* And no faster than the homing speed and the slide speed limit allow. */
+    assert_true(t >= 0.15 / 0.02 + d_home / SLIDE_VMAX_100KHZ);
+    /* The slides did go up and come back: none was ever left below where it started. */
+    for (int k = 0; k < 6; ++k)
+        assert_true(lowest[k] >= 0.05 - 1e-9);
+}
+
+/* From above, with every switch somewhere else: each slide's coordinate is set at its own switch
+ * (homing() checks the coordinates against the true positions, to the step: a switch taken for
+ * another's would be centimetres off), in the time of the longest seek. */
+static void test_homing_from_above_own_switches(void **state)
+{
+    (void)state;
+    const int32_t sw[6] = {190000, 210000, 230000, 250000, 270000, 200000};
+    const double s0[6] = {0.3, 0.3, 0.3, 0.3, 0.3, 0.3};
+    boot(s0, sw);
+    homing();
+    const double t = homing_ms * 1e-3;
+    const double bound = homing_bound_s(0.3 - 0.19, C.geom.home_s - 0.19);
+    print_message("homing from 0.3 m: %.2f s (bound %.2f s)\n", t, bound);
+    assert_true(t <= bound);
+    assert_true(t >= (0.3 - 0.19) / 0.02 + (C.geom.home_s - 0.19) / SLIDE_VMAX_100KHZ);
+    /* Each slide went down to its own switch, and not beyond it by more than the braking
+     * distance (0.22 mm) and the read-out lag. */
+    for (int k = 0; k < 6; ++k) {
+        assert_true(lowest[k] <= sw[k] * 1e-6);
+        assert_true(lowest[k] >= sw[k] * 1e-6 - 0.5e-3);
+    }
+}
+
+/* Lost steps, simulated by moving a slide 5 mm behind the controller's back: slide 1, homed 2 mm
+ * above its switch, pushed down to 3 mm below it (its switch pressed while the count says above);
+ * then slide 2, homed 2 mm below its switch, pushed up past it.  Each is a limit fault, the zero
+ * dropped; before the push, no fault. */
+static void test_lost_steps_fault(void **state)
+{
+    (void)state;
+    fw_param_set ps;
+    fw_params_default(&ps);
+    tse_params kp;
+    fw_params_kinematics(&ps, &kp);
+    tse_geometry g;
+    assert_int_equal(tse_geometry_init(&g, &kp), TSE_PARAM_OK);
+    const int32_t home_um = (int32_t)lround(g.home_s * 1e6);
+    for (int slide = 0; slide < 2; ++slide) {
+        int32_t sw[6] = {200000, 200000, 200000, 200000, 200000, 200000};
+        sw[slide] = slide == 0 ? home_um - 2000 : home_um + 2000;
+        const double s0[6] = {0.05, 0.05, 0.05, 0.05, 0.05, 0.05};
+        boot(s0, sw);
+        homing();
+        run(200);
+        assert_int_equal(C.state, FW_STATE_IDLE);
+        shift(slide, slide == 0 ? -6400 : 6400); /* 5 mm */
+        run(10);
+        assert_int_equal(C.state, FW_STATE_FAULT);
+        assert_int_equal(C.fault, FW_FAULT_LIMIT);
+        assert_false(C.homed);
+    }
+}
+
+/* Legitimate motion below the switches: a pose that puts slide 2 at 14 mm (tse-kin ik), far below
+ * its 0.2 m switch, and back; no fault, and the slide did go there. */
+static void test_motion_below_switch(void **state)
+{
+    (void)state;
+    start(0.3);
+    const double low[6] = {0.2, 0.15, 0.9, 0.0, 0.1, 0.5};
+    move_to(low, 1500);
+    wait_idle(30000);
+    assert_pose(low);
+    assert_true(lowest[1] < 0.2 - 0.1);
+    assert_int_equal(C.fault, FW_FAULT_NONE);
+    move_to(C.geom.home_pose, 1500);
+    wait_idle(30000);
+    assert_int_equal(C.fault, FW_FAULT_NONE);
+    assert_true(C.homed);
+}
+
+/* The plant's switches and timing checks on their own, at 100 kHz (10 us ticks). */
+static void test_plant_switches_and_timing(void **state)
+{
+    (void)state;
+    fw_param_set ps;
+    fw_params_default(&ps);
+    tse_params kp;
+    fw_params_kinematics(&ps, &kp);
+    tse_geometry g;
+    assert_int_equal(tse_geometry_init(&g, &kp), TSE_PARAM_OK);
+    const plant_config pc = {1280000.0, 0.15, 1.0, 0.05, 100000, 1, 2000, 15000, {0.2, 0.2, 0.2, 0.2, 0.2, 0.2}};
+    /* Slide 1 on its switch's last pressed step (0.2 m = 256000 steps), slide 2 a step above,
+     * slide 3 a step beyond the high end (0.9 m). */
+    const double s0[6] = {0.2, 0.2 + 1 / 1280000.0, 0.9 + 1 / 1280000.0, 0.3, 0.3, 0.3};
+    plant_init(&P, &pc, &g, s0);
+    const hal_inputs in = plant_inputs(&P);
+    const hal_stepper st = plant_stepper(&P);
+    const uint16_t m = in.limits(in.ctx);
+    assert_int_equal(m & 0x3F, 0x01);
+    assert_int_equal(m >> 8, 0x04);
+    assert_int_equal(P.pulse_ns, 2000);
+    assert_int_equal(P.dir_setup_ns, 15000);
+    st.enable(st.ctx, true);
+    plant_tick(&P);
+    /* DIR set-up 15 us: a step one tick (10 us) after the change is too soon, two ticks are not. */
+    st.set_dir(st.ctx, 0x3F & ~0x08);
+    plant_tick(&P);
+    st.pulse(st.ctx, 0x08);
+    assert_int_equal(P.breaches, PLANT_DIR_SETUP);
+    P.breaches = 0;
+    st.set_dir(st.ctx, 0x3F & ~0x08 & ~0x10);
+    plant_tick(&P);
+    plant_tick(&P);
+    st.pulse(st.ctx, 0x10);
+    assert_int_equal(P.breaches, 0);
+    /* 2 us high and 2 us low fit between steps on consecutive ticks; 6 us and 6 us do not. */
+    plant_tick(&P);
+    st.pulse(st.ctx, 0x20);
+    plant_tick(&P);
+    st.pulse(st.ctx, 0x20);
+    assert_int_equal(P.breaches, 0);
+    st.timing(st.ctx, 6000, 15000);
+    assert_int_equal(P.pulse_ns, 6000);
+    assert_int_equal(P.timing_calls, 1);
+    plant_tick(&P);
+    st.pulse(st.ctx, 0x20);
+    assert_int_equal(P.breaches, PLANT_PULSE_SPACING);
+    P.breaches = 0;
+    /* DIR of an axis changed while its STEP is still high (6 us after the edge). */
+    plant_tick(&P);
+    plant_tick(&P);
+    st.pulse(st.ctx, 0x01);
+    st.set_dir(st.ctx, P.forward ^ 0x01);
+    assert_int_equal(P.breaches, PLANT_DIR_SETUP);
+}
+
+/* The drivers' timing reaches the plant through the controller: a PARAM_SET of the pulse width is
+ * programmed, and what the plant checks from then on. */
+static void test_timing_reaches_plant(void **state)
+{
+    (void)state;
+    const double s0[6] = {0.3, 0.3, 0.3, 0.3, 0.3, 0.3};
+    boot(s0, NULL);
+    const uint32_t calls = P.timing_calls;
+    const int32_t v[2] = {FP_STEP_PULSE_NS, 3500};
+    send(PM_PARAM_SET, v);
+    run(5);
+    assert_int_equal(P.timing_calls, calls + 1);
+    assert_int_equal(P.pulse_ns, 3500);
+    assert_int_equal(P.dir_setup_ns, 5000);
+    homing(); /* and the firmware keeps within it */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -231,6 +465,12 @@ int main(void)
         cmocka_unit_test(test_blend_stop_and_estop_keep_invariants),
         cmocka_unit_test(test_trajectory),
         cmocka_unit_test(test_underrun_stops_smoothly),
+        cmocka_unit_test(test_homing_from_below),
+        cmocka_unit_test(test_homing_from_above_own_switches),
+        cmocka_unit_test(test_lost_steps_fault),
+        cmocka_unit_test(test_motion_below_switch),
+        cmocka_unit_test(test_plant_switches_and_timing),
+        cmocka_unit_test(test_timing_reaches_plant),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

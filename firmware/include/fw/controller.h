@@ -1,14 +1,25 @@
 /* The controller: the state machine of system.md, the CAN command handling, and the execution of
  * motion at the control segment rate.  Hardware-free: everything physical goes through fw_hal.
  *
- * The platform drives it from three places:
+ * The platform drives it from three places, and may add a fourth:
  * - fw_step_tick from the step interrupt (step_hz),
  * - fw_control_tick from the control tick (segment_hz): inputs, watchdog, the next segment,
- * - fw_poll from the main loop: CAN frames in and out, periodic status and telemetry.
- * On the board the first two are interrupts; in the simulator they are timer-driven calls. */
+ * - fw_poll from the main loop: CAN frames in and out, periodic status and telemetry,
+ * - fw_estop_isr from the e-stop input's interrupt.
+ * fw_control_tick and fw_poll must not preempt each other (one context, or one interrupt level);
+ * fw_step_tick and fw_estop_isr may preempt them at any point.  In the simulator they are
+ * timer-driven calls.
+ *
+ * The homing switches (bit i of hal_inputs.limits) are references, not ends of travel: slide i's
+ * is pressed at and below home_sw_i and released above it, and the slides go below it in
+ * legitimate poses.  Homing sets each slide's coordinate at its switch's release edge.  Once
+ * homed, a switch that disagrees with the step count by more than FW_HOME_SW_TOLERANCE_UM (lost
+ * steps, or a broken switch) is FW_FAULT_LIMIT; before homing they are not checked.  The optional
+ * high-end switches (bit 8 + i) are hard limits: pressed outside homing is FW_FAULT_LIMIT. */
 #ifndef FW_CONTROLLER_H
 #define FW_CONTROLLER_H
 
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -45,19 +56,30 @@ fw_reason fw_command_allowed(proto_msg cmd, fw_state state);
 
 typedef enum { FW_SRC_NONE, FW_SRC_MOVE, FW_SRC_TRAJ, FW_SRC_JOINT } fw_source;
 
-typedef enum { HOME_SEEK, HOME_RELEASE, HOME_TO_POSE } fw_home_phase;
+/* Homing: first every slide finds its switch on its own (HOME_SWITCHES), then all six go to the
+ * home pose together (HOME_TO_POSE). */
+typedef enum { HOME_SWITCHES, HOME_TO_POSE } fw_home_phase;
+
+/* One slide while finding its switch (homing.c). */
+typedef enum {
+    HOME_AXIS_LEAVE,   /* started on the switch: up at the homing speed, past the release */
+    HOME_AXIS_SEEK,    /* down at the homing speed to the press, then braking */
+    HOME_AXIS_RELEASE, /* up at the creep speed to the release edge */
+    HOME_AXIS_DONE     /* edge latched */
+} fw_home_axis;
 
 typedef struct {
     bool active;        /* homing runs, or is being stopped */
     bool abort;         /* a stop or a fault asked it to come to rest */
     fw_home_phase phase;
+    uint8_t axis[6];    /* fw_home_axis of each slide */
+    uint8_t released;   /* leaving slides whose switch has released */
+    uint8_t hit;        /* seeking slides whose switch has been pressed */
     tse_real v[6];      /* joint speeds [m/s], signed */
     tse_real s[6];      /* joint travel since homing began [m] */
-    tse_real offset[6]; /* slide coordinate minus travel, once latched */
+    tse_real mark[6];   /* travel where the slide's phase began (leaving: where it released) */
     int32_t start_steps[6];
-    uint8_t hit;        /* axes that found their switch */
-    uint8_t latched;    /* axes whose switch edge is known */
-    tse_real released[6]; /* travel when the release phase began */
+    int32_t edge_steps[6]; /* steps emitted when the release edge was seen */
 } fw_homing;
 
 /* A joint-space move (after homing, the robot is not yet at a pose the planner can start from). */
@@ -74,6 +96,7 @@ typedef struct {
     fw_fault pending_fault; /* fault to latch once the controlled stop ends */
     bool homed;
     bool drives_on;
+    atomic_bool estop_request; /* fw_estop_isr ran; fw_estop still to complete it */
 
     fw_param_set params;
     tse_geometry geom;
@@ -132,11 +155,23 @@ static inline void fw_step_tick(fw_controller *c)
 /* Handles one received frame (fw_poll calls it for every frame it reads). */
 void fw_handle_frame(fw_controller *c, const hal_can_frame *f);
 
-/* The emergency stop path, for a platform that wires the input to an interrupt. */
+/* The emergency stop: aborts stepping and every queued setpoint, drives off, state ESTOP (latched
+ * until CLEAR_FAULT), the zero dropped.  From the main loop's context (the ESTOP command and the
+ * polled input call it). */
 void fw_estop(fw_controller *c);
 
-/* A fault the platform detected (the simulator's plant reports FW_FAULT_PLANT): a controlled stop
- * if anything moves, then latched, exactly as the controller's own faults. */
+/* The emergency stop from an interrupt (the e-stop input's EXTI), of any priority above the main
+ * loop's.  At once: the step generator halts (no step from its next tick on; a step tick this
+ * interrupt preempted completes) and the drives are switched off through hal_stepper.enable; then
+ * it leaves a request that fw_poll, fw_control_tick and fw_handle_frame complete first thing (with
+ * fw_estop).  Between the two nothing emits a step: setpoints the interrupted code still pushes
+ * only wait in the halted queue, and fw_estop discards them; an ENABLE taken meanwhile does not
+ * switch the drives back on. */
+void fw_estop_isr(fw_controller *c);
+
+/* A fault the platform detected (the simulator's plant reports FW_FAULT_PLANT, the board
+ * FW_FAULT_HARDWARE): a controlled stop if anything moves, then latched, exactly as the
+ * controller's own faults. */
 void fw_report_fault(fw_controller *c, fw_fault f);
 
 #endif

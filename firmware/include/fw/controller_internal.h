@@ -26,4 +26,11 @@ void fw_homing_tick(fw_controller *c);
 /* Steps of a slide position [m]. */
 int32_t fw_to_steps(const fw_controller *c, tse_real s);
 
+/* Slide k's homing switch position (home_sw_k) in steps: the last whole step at which it is
+ * pressed, rounded down (the release edge is the step above). */
+int32_t fw_home_switch_steps(const fw_controller *c, int k);
+
+/* Completes a pending fw_estop_isr with fw_estop (nothing if none is pending). */
+void fw_estop_complete(fw_controller *c);
+
 #endif

@@ -37,8 +37,24 @@ typedef enum {
     FP_TELEMETRY_MS,  /* SLIDES/FK period [ms], 0 = off */
     FP_HOMING_SPEED,  /* [um/s] */
     FP_HOMING_BACKOFF,/* [um] */
+    FP_HOME_SW_1,     /* [um] slide coordinate at which slide 1's homing switch trips */
+    FP_HOME_SW_2,
+    FP_HOME_SW_3,
+    FP_HOME_SW_4,
+    FP_HOME_SW_5,
+    FP_HOME_SW_6,
+    FP_STEP_PULSE_NS, /* [ns] STEP high time */
+    FP_DIR_SETUP_NS,  /* [ns] DIR stable before a STEP edge */
+    FP_CAN_KBPS,      /* [kbit/s] 125, 250, 500 or 1000; applied by the board at start-up */
     FP_COUNT
 } fw_param_id;
+
+/* Once homed, a low switch must be pressed below home_sw_k - this and released above
+ * home_sw_k + this (controller.c).  0.5 mm: a mechanical or inductive switch's hysteresis and
+ * repeatability (0.1 to 0.3 mm) plus the one-step latch and a step of read-out skew, 640 steps at
+ * the default 1.28M steps/m; a stalled drive loses whole steps in groups of 256 (four full steps
+ * at 1/64), so two or three stalls already show. */
+#define FW_HOME_SW_TOLERANCE_UM 500
 
 typedef struct {
     const char *name;
@@ -58,13 +74,22 @@ void fw_params_default(fw_param_set *s);
 /* Kinematic parameters of a set (SI units). */
 void fw_params_kinematics(const fw_param_set *s, tse_params *out);
 
-/* Checks every range, then the geometry.  Returns -1 when all is well, otherwise the id of the
- * first parameter at fault. */
+/* Checks every range (and can_kbps against its four rates), then the geometry, then that the six
+ * homing switches can be reached together: with every slide at its switch each scissor must be
+ * within its angle stops (its width at least 2 l0 cos alpha_max), otherwise six slides seeking
+ * down together would be stopped by the mechanism before the switches.  Returns -1 when all is
+ * well, otherwise the id of the first parameter at fault. */
 int fw_params_check(const fw_param_set *s);
 
 /* Applies one change to *s only if the resulting set passes fw_params_check.
- * Returns 0, FW_REASON_PARAM_UNKNOWN, FW_REASON_PARAM_RANGE or FW_REASON_PARAM_SET. */
+ * Returns 0, FW_REASON_PARAM_UNKNOWN, FW_REASON_PARAM_RANGE (outside [min, max], or a can_kbps
+ * that is not one of the four rates) or FW_REASON_PARAM_SET.
+ * What depends on the controller's configuration (the STEP pulse against the step interrupt rate)
+ * is checked when the controller adopts the set (fw_apply_params). */
 int fw_params_set_one(fw_param_set *s, uint16_t id, int32_t value);
+
+/* Whether value is acceptable for parameter id on its own (range, and the CAN rates). */
+int fw_param_value_ok(uint16_t id, int32_t value);
 
 /* Storage record: a version tag, the set, and a CRC-32.  serialize returns the length written
  * (or 0 if cap is too small); deserialize returns 0 for a good record, -1 otherwise (and leaves

@@ -12,6 +12,9 @@
  * - Segments are double-buffered: the control loop queues the next setpoint while the current one
  *   runs, and the interrupt switches without a gap.  One producer (control loop) and one consumer
  *   (step interrupt) may run concurrently.
+ * - Halt: stepgen_halt, callable from any context (an e-stop interrupt), stops stepping from the
+ *   next tick on: a halted stepgen_tick emits no step and changes nothing.  stepgen_abort ends
+ *   the halt (see there); nothing else does, and setpoints pushed meanwhile only wait.
  *
  * No floating point, no heap; every operation is O(axes). */
 #ifndef FW_STEPGEN_H
@@ -51,6 +54,7 @@ typedef struct {
     int32_t queue[STEPGEN_QUEUE][STEPGEN_AXES];
     atomic_uint head; /* written by the producer */
     atomic_uint tail; /* written by the consumer */
+    atomic_bool halted; /* set by stepgen_halt, cleared by stepgen_abort */
     uint32_t overruns;  /* segments that asked more than their capacity */
     uint32_t underruns; /* segment ends with nothing queued while not at rest */
 } stepgen;
@@ -82,8 +86,14 @@ stepgen_output stepgen_tick(stepgen *sg);
 /* True when no segment runs and none is queued. */
 bool stepgen_idle(const stepgen *sg);
 
-/* Emergency stop: abandons the running segment and every queued one at once.  The positions
- * keep the steps actually emitted.  Call with the step interrupt masked (or from it). */
+/* Emergency stop, first half: no step from the next tick on.  Safe from any interrupt or thread;
+ * a tick it interrupts (when called from a higher priority than the step interrupt) completes. */
+void stepgen_halt(stepgen *sg);
+
+/* Emergency stop, second half: abandons the running segment and every queued one, then ends the
+ * halt.  The positions keep the steps actually emitted.  Call from the producer's context (or
+ * with the step interrupt masked): it halts first itself, so that a step interrupt meanwhile
+ * finds nothing to do. */
 void stepgen_abort(stepgen *sg);
 
 /* Position bookkeeping (homing sets the zero).  Only while idle; returns -1 otherwise. */

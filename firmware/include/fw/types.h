@@ -18,7 +18,10 @@ typedef enum {
 typedef enum {
     FW_FAULT_NONE = 0,
     FW_FAULT_WATCHDOG = 1,     /* host heartbeat silent past the timeout */
-    FW_FAULT_LIMIT = 2,        /* a limit switch outside homing */
+    FW_FAULT_LIMIT = 2,        /* outside homing: a high-end switch pressed, or (once homed) a low
+                                * homing switch that disagrees with the step count (pressed well
+                                * above its position, or released well below it): lost steps or
+                                * a broken switch; the zero is dropped */
     FW_FAULT_BUS_OFF = 3,      /* the CAN controller went bus-off */
     FW_FAULT_PLANNER = 4,      /* the inverse kinematics failed on a segment in motion */
     FW_FAULT_STEP_OVERRUN = 5, /* a segment asked the step generator for more than it can */
@@ -26,6 +29,8 @@ typedef enum {
     FW_FAULT_ESTOP = 7,        /* the e-stop input or command (latched until cleared) */
     FW_FAULT_UNDERRUN = 8,     /* the trajectory queue ran dry while moving */
     FW_FAULT_PLANT = 9,        /* the simulator's plant saw a physical invariant broken */
+    FW_FAULT_HARDWARE = 10,    /* a hardware wait timed out or a peripheral failed at start-up:
+                                * clock, CAN controller, flash (reported by the board) */
     FW_FAULT_COUNT
 } fw_fault;
 

@@ -15,7 +15,15 @@ typedef struct {
     void *ctx;
     void (*set_dir)(void *ctx, uint8_t forward_mask); /* bit i set: axis i moves towards +s */
     void (*pulse)(void *ctx, uint8_t step_mask);
-    void (*enable)(void *ctx, bool on);               /* shared ENABLE of all six drivers */
+    /* Shared ENABLE of all six drivers.  enable(ctx, false) must be safe from an interrupt of any
+     * priority (the e-stop interrupt switches the drives off through it). */
+    void (*enable)(void *ctx, bool on);
+    /* The drivers' timing, whenever the controller adopts a parameter set (at start-up and on
+     * every accepted change): pulse_ns is the STEP high time the implementation must produce;
+     * dir_setup_ns is how long DIR is stable before a STEP edge, which the step generator already
+     * keeps in whole step interrupts (for implementations that check or time it).  Called from the
+     * main loop, with the step generator at rest.  May be NULL. */
+    void (*timing)(void *ctx, uint32_t pulse_ns, uint32_t dir_setup_ns);
 } hal_stepper;
 
 #endif

@@ -21,8 +21,13 @@ void plant_init(tse_plant *p, const plant_config *cfg, const tse_geometry *g, co
     memset(p, 0, sizeof *p);
     p->cfg = *cfg;
     p->geom = *g;
-    for (int k = 0; k < 6; ++k)
+    for (int k = 0; k < 6; ++k) {
         p->steps[k] = llround(start[k] * cfg->steps_per_m);
+        /* s <= home_sw in whole steps; a millionth of a step absorbs the decimal conversions. */
+        p->sw_steps[k] = (int64_t)floor(cfg->home_sw[k] * cfg->steps_per_m + 1e-6);
+    }
+    p->pulse_ns = cfg->pulse_ns;
+    p->dir_setup_ns = cfg->dir_setup_ns;
     for (int j = 0; j < 2 * STRIDE_MS; ++j)
         for (int k = 0; k < 6; ++k)
             p->hist[j][k] = p->steps[k];
@@ -31,12 +36,23 @@ void plant_init(tse_plant *p, const plant_config *cfg, const tse_geometry *g, co
         p->pose[k] = g->home_pose[k];
 }
 
+/* Whether `ticks` step interrupts last less than ns nanoseconds. */
+static int shorter(const tse_plant *p, uint64_t ticks, uint64_t ns)
+{
+    return ticks * 1000000000u < ns * p->cfg.step_hz;
+}
+
 static void set_dir(void *ctx, uint8_t mask)
 {
     tse_plant *p = ctx;
-    for (int k = 0; k < 6; ++k)
-        if (((mask ^ p->forward) >> k) & 1u)
-            p->dir_change[k] = p->tick;
+    for (int k = 0; k < 6; ++k) {
+        if (!(((mask ^ p->forward) >> k) & 1u))
+            continue;
+        if (((p->stepped >> k) & 1u) && shorter(p, p->tick - p->last_step[k], p->pulse_ns))
+            breach(p, PLANT_DIR_SETUP, k, "direction changed while STEP was high");
+        p->dir_change[k] = p->tick;
+        p->dir_changed |= (uint8_t)(1u << k);
+    }
     p->forward = mask;
 }
 
@@ -55,8 +71,11 @@ static void pulse(void *ctx, uint8_t mask)
             breach(p, PLANT_STEP_DISABLED, k, "step with the drives disabled");
         if (p->last_step[k] && p->tick - p->last_step[k] < p->cfg.min_interval)
             breach(p, PLANT_PULSE_SPACING, k, "steps closer than the minimum interval");
-        if (p->dir_change[k] && p->tick - p->dir_change[k] < p->cfg.dir_setup)
+        if (((p->stepped >> k) & 1u) && shorter(p, p->tick - p->last_step[k], 2u * (uint64_t)p->pulse_ns))
+            breach(p, PLANT_PULSE_SPACING, k, "steps closer than the pulse's high and low time");
+        if (((p->dir_changed >> k) & 1u) && shorter(p, p->tick - p->dir_change[k], p->dir_setup_ns))
             breach(p, PLANT_DIR_SETUP, k, "step within the direction set-up time");
+        p->stepped |= (uint8_t)(1u << k);
         /* Speed from the spacing of two steps, allowing one tick of jitter. */
         if (p->last_step[k]) {
             const double dt = (double)(p->tick - p->last_step[k] + 1u) / p->cfg.step_hz;
@@ -77,15 +96,22 @@ static void enable(void *ctx, bool on)
     ((tse_plant *)ctx)->enabled = on;
 }
 
+static void timing(void *ctx, uint32_t pulse_ns, uint32_t dir_setup_ns)
+{
+    tse_plant *p = ctx;
+    p->pulse_ns = pulse_ns;
+    p->dir_setup_ns = dir_setup_ns;
+    ++p->timing_calls;
+}
+
 static uint16_t limits(void *ctx)
 {
     const tse_plant *p = ctx;
     uint16_t m = 0;
     for (int k = 0; k < 6; ++k) {
-        const double s = (double)p->steps[k] / p->cfg.steps_per_m;
-        if (s < p->geom.p.s_min) /* released exactly at s_min: the firmware's zero */
+        if (p->steps[k] <= p->sw_steps[k])
             m |= (uint16_t)(1u << k);
-        if (s > p->geom.p.s_max)
+        if ((double)p->steps[k] / p->cfg.steps_per_m > p->geom.p.s_max)
             m |= (uint16_t)(1u << (8 + k));
     }
     return m;
@@ -98,7 +124,7 @@ static bool estop(void *ctx)
 
 hal_stepper plant_stepper(tse_plant *p)
 {
-    return (hal_stepper){p, set_dir, pulse, enable};
+    return (hal_stepper){p, set_dir, pulse, enable, timing};
 }
 
 hal_inputs plant_inputs(tse_plant *p)

@@ -1,11 +1,15 @@
-/* The simulator's plant: six slides that integrate the step pulses they receive, limit switches,
- * an e-stop input, and the plate pose from forward kinematics.  It implements hal_stepper and
- * hal_inputs, and checks on every step what a real robot needs (reported, never silently
- * absorbed):
- *   - never beyond the mechanical stroke (the kinematic stroke plus an overtravel at each end,
- *     where the limit switches sit: a low switch is pressed for s < s_min, a high one for s > s_max);
- *   - no step while the drives are disabled; steps of one axis at least min_interval ticks apart
- *     and at least dir_setup ticks after a direction change;
+/* The simulator's plant: six slides that integrate the step pulses they receive, switches, an
+ * e-stop input, and the plate pose from forward kinematics.  It implements hal_stepper and
+ * hal_inputs.  Slide k's low (homing) switch is pressed for s <= home_sw[k] and released above it
+ * (a reference the slides pass in legitimate poses, not an end of travel); its high switch is
+ * pressed for s > s_max.  It checks on every step what a real robot needs (reported, never
+ * silently absorbed):
+ *   - never beyond the mechanical stroke (the kinematic stroke plus an overtravel at each end);
+ *   - no step while the drives are disabled; steps of one axis at least min_interval ticks apart;
+ *   - the drivers' timing, in time (the tick is 1 / step_hz) from what hal_stepper.timing last
+ *     programmed: a STEP edge at least dir_setup_ns after its axis' DIR changed, DIR never
+ *     changed while its STEP is still high (pulse_ns after the edge), and two STEP edges of one
+ *     axis at least twice pulse_ns apart (high, then as long low);
  *   - slide speed, from the spacing of consecutive steps, within the limit (one tick of jitter
  *     allowed); slide acceleration, the second difference of the position over 10 ms taken every
  *     millisecond (the planner's measure), within the limit (two steps of quantisation allowed),
@@ -38,7 +42,9 @@ typedef struct {
     double tolerance;         /* relative margin on vmax, amax */
     uint32_t step_hz;         /* step interrupt rate (the plant's clock) */
     uint32_t min_interval;    /* ticks */
-    uint32_t dir_setup;       /* ticks */
+    uint32_t pulse_ns;        /* drivers' timing at power-up (hal_stepper.timing reprograms it) */
+    uint32_t dir_setup_ns;
+    double home_sw[6];        /* where each low switch trips [m] */
 } plant_config;
 
 typedef struct {
@@ -51,6 +57,11 @@ typedef struct {
     uint64_t tick;            /* step interrupts so far */
     uint64_t last_step[6];    /* tick of each axis' latest step (0: none) */
     uint64_t dir_change[6];   /* tick of each axis' latest direction change */
+    uint8_t dir_changed;      /* axes whose direction has changed at least once */
+    uint8_t stepped;          /* axes that have stepped at least once */
+    int64_t sw_steps[6];      /* last step position at which each low switch is pressed */
+    uint32_t pulse_ns, dir_setup_ns; /* as last programmed */
+    uint32_t timing_calls;    /* hal_stepper.timing calls so far */
     int64_t hist[20][6];      /* positions at the last 20 millisecond boundaries */
     uint32_t ms;              /* millisecond boundaries passed */
     uint32_t quiet_ms;        /* acceleration not judged (drives off, or just back on) */
