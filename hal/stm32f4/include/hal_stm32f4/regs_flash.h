@@ -29,4 +29,25 @@ _Static_assert(offsetof(tse_flash_regs, OPTCR) == 0x14, "FLASH OPTCR offset");
 #define FLASH_ACR_ICRST (1u << 11)
 #define FLASH_ACR_DCRST (1u << 12)
 
+/* KEYR: the two keys, in this order, unlock CR (RM0090 3.5.1) */
+#define FLASH_KEY1 0x45670123u
+#define FLASH_KEY2 0xCDEF89ABu
+
+/* SR (RM0090 3.9.4): error flags and EOP are cleared by writing 1 */
+#define FLASH_SR_EOP (1u << 0)
+#define FLASH_SR_OPERR (1u << 1)
+#define FLASH_SR_WRPERR (1u << 4)
+#define FLASH_SR_PGAERR (1u << 5)
+#define FLASH_SR_PGPERR (1u << 6)
+#define FLASH_SR_PGSERR (1u << 7)
+#define FLASH_SR_BSY (1u << 16)
+
+/* CR (RM0090 3.9.5) */
+#define FLASH_CR_PG (1u << 0)
+#define FLASH_CR_SER (1u << 1)
+#define FLASH_CR_SNB(n) ((uint32_t)(n) << 3) /* sector number, bits 6:3 on the F405/407 */
+#define FLASH_CR_PSIZE_X32 (2u << 8)        /* 32-bit parallelism: 2.7..3.6 V */
+#define FLASH_CR_STRT (1u << 16)
+#define FLASH_CR_LOCK (1u << 31)
+
 #endif
