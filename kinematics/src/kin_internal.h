@@ -4,6 +4,7 @@
 #define TSE_KIN_INTERNAL_H
 
 #include "tse/geometry.h"
+#include "tse/ik.h"
 
 /* What the constraints of one scissor need to know of its ball joint. */
 typedef struct {
@@ -22,6 +23,8 @@ typedef struct {
 #define tse_sym_eigen6 TSE_NS(tse_sym_eigen6)
 #define tse_weakest_row6 TSE_NS(tse_weakest_row6)
 #define tse_constraint_rows TSE_NS(tse_constraint_rows)
+#define tse_scissor_solve_local TSE_NS(tse_scissor_solve_local)
+#define tse_type2_margin TSE_NS(tse_type2_margin)
 
 void tse_scissor_localize(const tse_geometry *g, int i, const tse_real C[3], tse_scissor_local *loc);
 
@@ -60,5 +63,16 @@ int tse_weakest_row6(const tse_real A[6][6]);
 void tse_constraint_rows(const tse_geometry *g, const tse_real pose[6], const tse_plate *f,
                          const tse_real C[3][3], const tse_real q[6], tse_real rot_scale,
                          tse_real Fp[6][6], tse_real M[3][2][2]);
+
+/* tse_scissor_solve (tse/ik.h) for a ball joint already localized, without its checks of the
+ * input: for a caller that has made sure the ball joint and the seed are finite. */
+tse_status tse_scissor_solve_local(const tse_geometry *g, const tse_scissor_local *loc,
+                                   tse_real seed_a, tse_real seed_b, tse_scissor_solution *out);
+
+/* The type-2 margin of tse_ik: tse_hadamard_ratio of the rows tse_constraint_rows gives with
+ * rot_scale = 1 / r_top, from a closed form instead of a 6x6 elimination (see jacobian.c).  loc
+ * and q are the localized ball joints and the slides of the solution. */
+tse_real tse_type2_margin(const tse_geometry *g, const tse_real pose[6], const tse_plate *f,
+                          const tse_real C[3][3], const tse_scissor_local loc[3], const tse_real q[6]);
 
 #endif

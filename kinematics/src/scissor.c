@@ -92,19 +92,12 @@ static int newton(const tse_geometry *g, const tse_scissor_local *loc, tse_real 
     return 0;
 }
 
-/* Whether (s_a, s_b) solves the pair: a stalled iteration leaves |F| of 1e-2 and more, a root at
- * most the stopping error times |M| plus rounding; sqrt(eps) of the size of F's terms lies well
- * between (9e-8 in double, 2e-3 in float). */
-static int solves(const tse_geometry *g, const tse_scissor_local *loc, tse_real s_a, tse_real s_b)
-{
-    tse_real F[2], M[2][2];
-    tse_scissor_eval(g, loc, s_a, s_b, F, M);
-    const tse_real w2 = s_a * s_a + s_b * s_b + TSE_R(2.0) * g->c * s_a * s_b;
-    const tse_real scale = loc->rho2 + g->p.L * g->p.L + tse_fabs(g->g) * w2 + s_a * s_a + s_b * s_b;
-    return tse_fabs(F[0]) + tse_fabs(F[1]) <= tse_sqrt(TSE_REAL_EPS) * scale;
-}
-
-/* Fills everything but the iteration counts; returns 1 when (s_a, s_b) is on the physical sheet. */
+/* Fills everything but the iteration counts from one evaluation at (s_a, s_b), and returns 1
+ * when the point solves the pair and lies on the physical sheet (det M > 0, positive slides).
+ *
+ * Solves: a stalled iteration leaves |F| of 1e-2 and more, a root at most the stopping error
+ * times |M| plus rounding; sqrt(eps) of the size of F's terms lies well between (9e-8 in double,
+ * 2e-3 in float). */
 static int describe(const tse_geometry *g, const tse_scissor_local *loc, tse_real s_a, tse_real s_b,
                     tse_scissor_solution *out)
 {
@@ -116,8 +109,11 @@ static int describe(const tse_geometry *g, const tse_scissor_local *loc, tse_rea
     const tse_real n1 = M[0][0] * M[0][0] + M[0][1] * M[0][1];
     const tse_real n2 = M[1][0] * M[1][0] + M[1][1] * M[1][1];
     out->mu = out->det / tse_sqrt(n1 * n2);
-    out->w = tse_sqrt(s_a * s_a + s_b * s_b + TSE_R(2.0) * g->c * s_a * s_b);
-    return out->det > TSE_R(0.0) && s_a > TSE_R(0.0) && s_b > TSE_R(0.0);
+    const tse_real w2 = s_a * s_a + s_b * s_b + TSE_R(2.0) * g->c * s_a * s_b;
+    out->w = tse_sqrt(w2);
+    const tse_real scale = loc->rho2 + g->p.L * g->p.L + tse_fabs(g->g) * w2 + s_a * s_a + s_b * s_b;
+    const int solves = tse_fabs(F[0]) + tse_fabs(F[1]) <= tse_sqrt(TSE_REAL_EPS) * scale;
+    return solves && out->det > TSE_R(0.0) && s_a > TSE_R(0.0) && s_b > TSE_R(0.0);
 }
 
 static int within_limits(const tse_geometry *g, const tse_scissor_solution *s)
@@ -160,7 +156,7 @@ static int enumerate(const tse_geometry *g, const tse_scissor_local *loc, tse_re
         newton(g, loc, &a, &b, POLISH_MAX_ITER, iterations);
         tse_scissor_solution cand;
         /* A polish that wandered off a spurious root leaves a residual far above rounding. */
-        if (!describe(g, loc, a, b, &cand) || !solves(g, loc, a, b))
+        if (!describe(g, loc, a, b, &cand))
             continue;
         const int in = within_limits(g, &cand);
         const tse_real dist = (a - seed_a) * (a - seed_a) + (b - seed_b) * (b - seed_b);
@@ -174,6 +170,32 @@ static int enumerate(const tse_geometry *g, const tse_scissor_local *loc, tse_re
     return found;
 }
 
+tse_status tse_scissor_solve_local(const tse_geometry *g, const tse_scissor_local *loc,
+                                   tse_real seed_a, tse_real seed_b, tse_scissor_solution *out)
+{
+    out->fallback = 0;
+    tse_real a = seed_a, b = seed_b;
+    int iterations = 0;
+    if (newton(g, loc, &a, &b, NEWTON_MAX_ITER, &iterations) && describe(g, loc, a, b, out) &&
+        within_limits(g, out)) {
+        out->iterations = iterations;
+        return TSE_OK;
+    }
+    /* Newton stalled, left the sheet, or found a solution outside the limits while another might
+     * be inside them: only the full enumeration can tell. */
+    tse_scissor_solution best;
+    const int found = enumerate(g, loc, seed_a, seed_b, &best, &iterations);
+    if (found) {
+        *out = best;
+    } else {
+        /* Leave something printable for diagnostics. */
+        describe(g, loc, a, b, out);
+    }
+    out->iterations = iterations;
+    out->fallback = 1;
+    return found ? TSE_OK : TSE_UNREACHABLE;
+}
+
 tse_status tse_scissor_solve(const tse_geometry *g, int i, const tse_real C[3], tse_real seed_a,
                              tse_real seed_b, tse_scissor_solution *out)
 {
@@ -181,27 +203,7 @@ tse_status tse_scissor_solve(const tse_geometry *g, int i, const tse_real C[3], 
     out->fallback = 0;
     if (!isfinite(C[0]) || !isfinite(C[1]) || !isfinite(C[2]) || !isfinite(seed_a) || !isfinite(seed_b))
         return TSE_INVALID;
-
     tse_scissor_local loc;
     tse_scissor_localize(g, i, C, &loc);
-    tse_real a = seed_a, b = seed_b;
-    int iterations = 0;
-    if (newton(g, &loc, &a, &b, NEWTON_MAX_ITER, &iterations) && solves(g, &loc, a, b) &&
-        describe(g, &loc, a, b, out) && within_limits(g, out)) {
-        out->iterations = iterations;
-        return TSE_OK;
-    }
-    /* Newton stalled, left the sheet, or found a solution outside the limits while another might
-     * be inside them: only the full enumeration can tell. */
-    tse_scissor_solution best;
-    const int found = enumerate(g, &loc, seed_a, seed_b, &best, &iterations);
-    if (found) {
-        *out = best;
-    } else {
-        /* Leave something printable for diagnostics. */
-        describe(g, &loc, a, b, out);
-    }
-    out->iterations = iterations;
-    out->fallback = 1;
-    return found ? TSE_OK : TSE_UNREACHABLE;
+    return tse_scissor_solve_local(g, &loc, seed_a, seed_b, out);
 }

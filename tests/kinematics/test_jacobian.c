@@ -190,6 +190,53 @@ static void test_constraint_jacobians(void **state)
     assert_true(tested >= 50);
 }
 
+/* nu, which the IK takes from a closed form (kinematics/src/jacobian.c), is the Hadamard ratio of
+ * dF/dp with its rotation columns weighed by 1/r_top, computed here by elimination on the rows of
+ * tse_constraint_jacobians (checked against the reference above), over poses tilted far enough
+ * (pitch to +-1.3 rad) that the plate's axes are far from orthogonal, and on both sides of nu_min. */
+static void test_nu_matches_elimination(void **state)
+{
+    (void)state;
+    tse_geometry g;
+    orc_geom og;
+    test_default_geometries(&g, &og);
+    uint64_t seed = 4242;
+    int ok = 0, degenerate = 0, steep = 0;
+    double worst = 0;
+    for (int n = 0; n < 200000 && (ok < 300 || degenerate < 30); n++) {
+        tse_real pose[6];
+        const double r = 0.5 * sqrt(rng_unit(&seed)), ph = rng_range(&seed, -PI, PI);
+        set_pose(pose, r * cos(ph), r * sin(ph), rng_range(&seed, 0.3, 1.6),
+                 rng_range(&seed, -1.3, 1.3), rng_range(&seed, -1.3, 1.3),
+                 rng_range(&seed, -PI, PI));
+        tse_ik_result res;
+        const tse_status st = tse_ik(&g, pose, NULL, &res);
+        if (st != TSE_OK && st != TSE_DEGENERATE)
+            continue;
+        tse_real Fp[6][6], M[3][2][2];
+        tse_constraint_jacobians(&g, pose, res.q, Fp, M);
+        for (int i = 0; i < 6; i++)
+            for (int j = 3; j < 6; j++)
+                Fp[i][j] /= g.r_top;
+        const double want = (double)tse_hadamard_ratio(Fp);
+        const double e = fabs((double)res.nu - want);
+        if (e > worst)
+            worst = e;
+        if (!(e <= (IS_FLOAT ? 2e-5 : 1e-12))) {
+            print_error("pose " POSE_FMT ": nu %.9g, elimination %.9g\n", POSE_ARGS(pose),
+                        (double)res.nu, want);
+            fail();
+        }
+        ok += st == TSE_OK;
+        degenerate += st == TSE_DEGENERATE;
+        steep += fabs((double)pose[TSE_PITCH]) > 0.8;
+    }
+    print_message("nu against elimination: %d ok, %d degenerate (%d with |pitch| > 0.8), worst "
+                  "difference %.3g\n",
+                  ok, degenerate, steep, worst);
+    assert_true(ok >= 300 && degenerate >= 30 && steep >= 30);
+}
+
 static void test_jacobian_bad_input(void **state)
 {
     (void)state;
@@ -383,6 +430,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_jacobian_analytic),
         cmocka_unit_test(test_constraint_jacobians),
+        cmocka_unit_test(test_nu_matches_elimination),
         cmocka_unit_test(test_jacobian_bad_input),
         cmocka_unit_test(test_singular_values_known),
         cmocka_unit_test(test_hadamard_ratio_known),
