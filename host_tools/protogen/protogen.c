@@ -98,7 +98,11 @@ static void markdown(void)
 
     printf("\n## Parameters (`PARAM_GET`, `PARAM_SET`, `PARAM_SAVE`)\n\n"
            "Set only while disabled or in a fault; each value is range-checked, then the whole set is\n"
-           "checked (kinematics.md's valid parameter sets) before it replaces the old one.\n\n"
+           "checked (kinematics.md's valid parameter sets; the homing switches inside the stroke and\n"
+           "reachable all at once; the STEP pulse and DIR set-up against the controller's step interrupt\n"
+           "rate) before it replaces the old one, and the drivers' timing is programmed at once.\n"
+           "`can_kbps` is only stored: the board applies it at start-up, so it takes effect after\n"
+           "`PARAM_SAVE` and a restart.\n\n"
            "| id | name | unit | min | max | default | meaning |\n|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < FP_COUNT; ++i) {
         const fw_param_def *p = &fw_param_table[i];

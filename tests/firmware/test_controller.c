@@ -702,19 +702,24 @@ static void test_driver_timing(void **state)
     assert_int_equal(C.params.v[FP_CAN_KBPS], 250);
 }
 
-/* A change of a switch position drops the zero: it was set against the old one. */
+/* A change of a switch position or of the step size drops the zero: it was set against the old
+ * ones.  Other parameters keep it. */
 static void test_switch_change_needs_homing(void **state)
 {
     (void)state;
-    reach(FW_STATE_IDLE);
-    cmd(PM_DISABLE);
-    run(10);
-    assert_int_equal(C.state, FW_STATE_DISABLED);
-    assert_true(C.homed);
-    assert_int_equal(set_param(FP_WATCHDOG_MS, 400, NULL, NULL), 'a');
-    assert_true(C.homed);
-    assert_int_equal(set_param(FP_HOME_SW_2, 210000, NULL, NULL), 'a');
-    assert_false(C.homed);
+    const uint16_t ids[2] = {FP_HOME_SW_2, FP_STEPS_PER_M};
+    const int32_t values[2] = {210000, 1280001};
+    for (int i = 0; i < 2; ++i) {
+        reach(FW_STATE_IDLE);
+        cmd(PM_DISABLE);
+        run(10);
+        assert_int_equal(C.state, FW_STATE_DISABLED);
+        assert_true(C.homed);
+        assert_int_equal(set_param(FP_WATCHDOG_MS, 400, NULL, NULL), 'a');
+        assert_true(C.homed);
+        assert_int_equal(set_param(ids[i], values[i], NULL, NULL), 'a');
+        assert_false(C.homed);
+    }
 }
 
 /* The e-stop interrupt (fw_estop_isr) from the fake HAL, once, at a chosen point. */
