@@ -30,3 +30,30 @@ function(tse_board_image target)
     COMMAND ${CMAKE_SIZE} $<TARGET_FILE:${target}>
     COMMENT "Image ${target}: .elf, .bin, .hex")
 endfunction()
+
+# A board build directory configured before cmake/arm-none-eabi.cmake gained -fstack-usage
+# -fcallgraph-info=su keeps its cached CMAKE_C_FLAGS: add them here, so that every object gets
+# the .su and .ci the stack report reads without a fresh configure.
+if(CMAKE_CROSSCOMPILING AND NOT CMAKE_C_FLAGS MATCHES "-fcallgraph-info")
+  add_compile_options($<$<COMPILE_LANGUAGE:C>:-fstack-usage> $<$<COMPILE_LANGUAGE:C>:-fcallgraph-info=su>)
+endif()
+
+# The worst-case stack of a board image: cmake/stack_report.py adds up the .ci call graphs and
+# .su frames (-fstack-usage -fcallgraph-info=su in cmake/arm-none-eabi.cmake) of the objects the
+# map says were linked, writes TARGET.stack.txt beside the .elf, and fails the build when the
+# thread's deepest chain plus one handler and exception frame per interrupt priority level
+# exceeds the linker script's _stack_size.
+#   tse_stack_report(TARGET)   (after tse_board_image(TARGET))
+function(tse_stack_report target)
+  find_program(TSE_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
+  if(NOT TSE_PYTHON)
+    find_program(TSE_PYTHON NAMES python3 REQUIRED)
+  endif()
+  add_custom_command(TARGET ${target} POST_BUILD
+    COMMAND ${TSE_PYTHON} ${PROJECT_SOURCE_DIR}/cmake/stack_report.py --quiet
+            --map $<TARGET_FILE_DIR:${target}>/${target}.map --elf $<TARGET_FILE:${target}>
+            --build-dir ${PROJECT_BINARY_DIR} --link-dir ${CMAKE_CURRENT_BINARY_DIR}
+            --ldscript ${TSE_BOARD_LDSCRIPT} --source-root ${PROJECT_SOURCE_DIR}
+            --prio-header ${PROJECT_SOURCE_DIR}/hal/stm32f4/include/hal_stm32f4/pinmap.h
+    COMMENT "Worst-case stack of ${target}")
+endfunction()
