@@ -28,6 +28,7 @@
 #include "tse/geometry.h"
 #include "tse/ik.h"
 #include "tse/jacobian.h"
+#include "kin_table.h"
 
 #define MAX_CASES 1200
 #define PERTURB 5e-5     /* m or rad: the status must not change within this of the pose (float
@@ -462,6 +463,132 @@ static void invalid_path(void)
     }
 }
 
+/* Reference poses, in um and urad (the CAN protocol's units): a start near the home height, a
+ * near and a far move, a pure turn, and the two targets of the controller image's script. */
+static const struct {
+    const char *name;
+    int32_t u[6];
+} refs[] = {
+    {"start", {0, 0, 1100000, 0, 0, 0}},
+    {"near", {30000, -20000, 1050000, 30000, -20000, 50000}},
+    {"far", {-100000, 80000, 850000, -100000, 80000, -150000}},
+    {"turn", {0, 0, 1100000, 0, 0, 450000}},
+    {"ctl_a", {10000, -8000, 1100000, 10000, -5000, 15000}},
+    {"ctl_b", {-30000, 20000, 1080000, -20000, 20000, -40000}},
+};
+#define NREFS (int)(sizeof refs / sizeof refs[0])
+static tse_ik_result ref_ik[NREFS];
+
+static void make_refs(void)
+{
+    for (int i = 0; i < NREFS; ++i) {
+        double p[6];
+        for (int k = 0; k < 6; ++k)
+            p[k] = refs[i].u[k] * 1e-6;
+        tse_ik_result *r = &ref_ik[i];
+        if (!decided(&geom[0], p, NULL, r) || r->status != TSE_OK || !(r->mu[0] >= 0.1 && r->mu[1] >= 0.1 && r->mu[2] >= 0.1)) {
+            fprintf(stderr, "gen_kin_table: reference pose %s is not accepted with margin\n", refs[i].name);
+            exit(1);
+        }
+    }
+}
+
+#define PATH_SAMPLES 40
+typedef struct {
+    double from[6], to[6], u_first;
+    tse_status status;
+    int scissor;
+} path_entry;
+#define KIN_PATHS_MAX 2
+static path_entry paths[KIN_PATHS_MAX];
+static int npaths;
+
+static void path_pose(const path_entry *e, double u, double p[6])
+{
+    for (int k = 0; k < 6; ++k)
+        p[k] = k < 3 ? e->from[k] + u * (e->to[k] - e->from[k]) : e->from[k];
+}
+
+/* Straight paths at a fixed orientation between two accepted poses, through a region where the
+ * inverse kinematics fails: the first u where it fails, bisected, and the same status on the same
+ * scissor for a while after it, so that the planner's first failing segment must name them.  The
+ * workspace at a fixed orientation is nearly convex when the plate is level; with a strongly
+ * tilted plate, straight paths cross the degenerate surfaces (nu < nu_min) and the angle stops
+ * between accepted poses.  One path per status. */
+static void make_paths(void)
+{
+    for (long attempt = 0; attempt < 100000 && npaths < KIN_PATHS_MAX; ++attempt) {
+        path_entry e;
+        const double o[3] = {uniform(-0.8, 0.8), uniform(-0.8, 0.8), uniform(-0.8, 0.8)};
+        for (int k = 0; k < 3; ++k)
+            e.from[3 + k] = e.to[3 + k] = o[k];
+        e.from[0] = uniform(-0.3, 0.3), e.from[1] = uniform(-0.4, 0.4), e.from[2] = uniform(0.3, 1.3);
+        e.to[0] = uniform(-0.3, 0.3), e.to[1] = uniform(-0.4, 0.4), e.to[2] = uniform(0.3, 1.3);
+        round_pose(e.from);
+        round_pose(e.to);
+        double len = 0.0;
+        for (int k = 0; k < 3; ++k)
+            len += (e.to[k] - e.from[k]) * (e.to[k] - e.from[k]);
+        len = sqrt(len);
+        if (len < 0.1 || len > 0.6)
+            continue;
+        tse_ik_result a, b, r;
+        if (!decided(&geom[0], e.from, NULL, &a) || a.status != TSE_OK || !decided(&geom[0], e.to, NULL, &b) ||
+            b.status != TSE_OK)
+            continue;
+        /* scan, warm like the planner, then bisect between the last accepted and first failing u */
+        double lo = 0.0, hi = -1.0, seed[6], p[6];
+        memcpy(seed, a.q, sizeof seed);
+        for (int s = 1; s <= 2000; ++s) {
+            const double u = s / 2000.0;
+            path_pose(&e, u, p);
+            tse_ik(&geom[0], p, seed, &r);
+            if (r.status != TSE_OK) {
+                hi = u;
+                break;
+            }
+            lo = u;
+            memcpy(seed, r.q, sizeof seed);
+        }
+        if (hi < 0.0 || lo < 0.1 || hi > 0.9)
+            continue;
+        for (int it = 0; it < 60; ++it) {
+            const double mid = 0.5 * (lo + hi);
+            path_pose(&e, mid, p);
+            tse_ik(&geom[0], p, NULL, &r);
+            if (r.status == TSE_OK)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        e.u_first = hi;
+        path_pose(&e, hi, p);
+        tse_ik(&geom[0], p, NULL, &r);
+        e.status = r.status;
+        e.scissor = r.scissor;
+        int same = r.status != TSE_NOCONVERGE;
+        for (int s = 1; s <= PATH_SAMPLES && same; ++s) {
+            path_pose(&e, hi + KIN_PATH_AFTER * s / PATH_SAMPLES, p);
+            tse_ik(&geom[0], p, NULL, &r);
+            same = r.status == e.status && r.scissor == e.scissor;
+        }
+        /* accepted up to 1e-4 before it (the scan saw every 5e-4 accepted, warm) */
+        path_pose(&e, e.u_first - 1e-4, p);
+        tse_ik(&geom[0], p, NULL, &r);
+        if (!same || r.status != TSE_OK)
+            continue;
+        int dup = 0;
+        for (int i = 0; i < npaths; ++i)
+            dup |= paths[i].status == e.status;
+        if (!dup)
+            paths[npaths++] = e;
+    }
+    if (npaths < 2) {
+        fprintf(stderr, "gen_kin_table: only %d failing paths found\n", npaths);
+        exit(1);
+    }
+}
+
 static void print_real(FILE *f, double x, int is_float)
 {
     if (isnan(x))
@@ -509,6 +636,31 @@ static void write_table(FILE *f)
         }
     }
     fprintf(f, "};\n\nconst unsigned kin_case_count = %d;\n", ncases);
+    fputs("\nconst kin_ref kin_refs[KIN_REFS] = {\n", f);
+    for (int i = 0; i < NREFS; ++i) {
+        fprintf(f, "    {\"%s\", {", refs[i].name);
+        for (int k = 0; k < 6; ++k)
+            fprintf(f, "%ld%s", (long)refs[i].u[k], k < 5 ? ", " : "}, {");
+        for (int k = 0; k < 6; ++k) {
+            print_real(f, ref_ik[i].q[k], 0);
+            fputs(k < 5 ? ", " : "}},\n", f);
+        }
+    }
+    fputs("};\n\nconst kin_path kin_paths[] = {\n", f);
+    for (int i = 0; i < npaths; ++i) {
+        fputs("    {{", f);
+        for (int k = 0; k < 6; ++k) {
+            print_real(f, paths[i].from[k], 1);
+            fputs(k < 5 ? ", " : "}, {", f);
+        }
+        for (int k = 0; k < 6; ++k) {
+            print_real(f, paths[i].to[k], 1);
+            fputs(k < 5 ? ", " : "}, ", f);
+        }
+        print_real(f, paths[i].u_first, 0);
+        fprintf(f, ", %d, %d},\n", (int)paths[i].status, paths[i].scissor);
+    }
+    fprintf(f, "};\n\nconst unsigned kin_path_count = %d;\n", npaths);
 }
 
 int main(int argc, char **argv)
@@ -536,6 +688,8 @@ int main(int argc, char **argv)
         else
             random_path();
     }
+    make_refs();
+    make_paths();
     FILE *f = fopen(argv[1], "w");
     if (!f) {
         perror(argv[1]);
@@ -554,5 +708,8 @@ int main(int argc, char **argv)
     for (int st = 0; st < TSE_STATUS_COUNT; ++st)
         printf("  %-12s %3d  (scissor 1/2/3: %d %d %d)\n", tse_status_name((tse_status)st), count_status[st],
                count_scissor[st][1], count_scissor[st][2], count_scissor[st][3]);
+    for (int i = 0; i < npaths; ++i)
+        printf("  path %d: %s on scissor %d from u = %.6f\n", i, tse_status_name(paths[i].status), paths[i].scissor,
+               paths[i].u_first);
     return 0;
 }

@@ -31,4 +31,31 @@ extern const kin_design kin_designs[KIN_DESIGNS];
 extern const kin_case kin_cases[];
 extern const unsigned kin_case_count;
 
+/* Reference poses of the planner and controller images (design 0), in whole micrometres and
+ * microradians as the CAN protocol carries them, with their double slides: each is accepted with
+ * every mu >= 0.1. */
+typedef struct {
+    const char *name;
+    int32_t pose_u[6];  /* um, urad */
+    double q[6];        /* double IK of pose_u * 1e-6, from no seed */
+} kin_ref;
+
+enum { REF_START, REF_NEAR, REF_FAR, REF_TURN, REF_CTL_A, REF_CTL_B, KIN_REFS };
+extern const kin_ref kin_refs[KIN_REFS];
+
+/* Straight paths at a fixed orientation between two accepted poses, through a region where the
+ * IK fails (design 0): pose(u) = from + u (to - from) in position, the orientation of both.  In
+ * double, u = u_first - 1e-4 and the path before it (warm, every 5e-4) are accepted, and every u
+ * in [u_first, u_first + KIN_PATH_AFTER] fails with the same status on the same scissor (40
+ * samples).  One path per status found. */
+#define KIN_PATH_AFTER 0.004
+typedef struct {
+    float from[6], to[6];
+    double u_first;     /* where the path first fails (bisected to 1e-12) */
+    uint8_t status, scissor;
+} kin_path;
+
+extern const kin_path kin_paths[];
+extern const unsigned kin_path_count;
+
 #endif
