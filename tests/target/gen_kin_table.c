@@ -17,6 +17,10 @@
  * tightened; kinematics.md's default stroke lets the alpha stops bound the workspace), and
  * `invalid` comes from explicit non-finite poses.
  *
+ * The same table carries what the planner and controller images compare with: reference poses
+ * in whole micrometres and microradians with their double slides, and straight paths between
+ * accepted poses through a region where the IK fails, with where it first fails (kin_table.h).
+ *
  *   gen_kin_table OUTPUT.c */
 #include <math.h>
 #include <stdint.h>
