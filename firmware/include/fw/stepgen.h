@@ -16,6 +16,14 @@
  *   next tick on: a halted stepgen_tick emits no step and changes nothing.  stepgen_abort ends
  *   the halt (see there); nothing else does, and setpoints pushed meanwhile only wait.
  *
+ * The interrupt's tick is short: per axis an add, a sign test and on a step a subtraction, no
+ * division, nothing 64-bit; the first and last ticks of a segment and the end of a direction
+ * set-up do a little more.  stepgen_push prepares each
+ * segment (its deltas, directions, set-up delays and capacity clip) from where the segments
+ * before it leave the axes, and the interrupt runs it where it was prepared, so that starting one
+ * costs a few stores; the positions are not counted step by step but computed by
+ * stepgen_positions from the running segment and its tick.
+ *
  * No floating point, no heap; every operation is O(axes). */
 #ifndef FW_STEPGEN_H
 #define FW_STEPGEN_H
@@ -33,28 +41,47 @@ typedef struct {
     uint32_t min_step_interval; /* ticks between two steps of one axis (>= 1) */
 } stepgen_config;
 
+/* The interrupt's state of one axis: Bresenham as an error term, acc of the classic form (span at
+ * the start of the axis' span ticks, + 2 delta a tick, a step and - 2 span when it reaches 2 span)
+ * minus 2 span, so that the test is a sign. */
 typedef struct {
-    int32_t position;  /* steps emitted, signed, since the last stepgen_reset */
-    int32_t start;     /* position when the running segment began */
-    uint32_t delta;    /* |steps| the running segment asks of this axis */
-    uint32_t done;     /* steps emitted in the running segment */
-    uint32_t acc;      /* Bresenham accumulator */
-    uint32_t span;     /* ticks over which the steps are spread */
-    uint32_t first;    /* first tick (1-based) at which this axis may step */
-    bool forward;
+    int32_t err;  /* < 0 between steps; the tick that brings it to >= 0 steps and takes dec off */
+    uint32_t inc; /* added every tick: 2 delta, or 0 while a direction set-up holds the axis */
+    uint32_t dec; /* 2 span */
 } stepgen_axis;
+
+#define STEPGEN_RING 8 /* slots: the running segment and up to STEPGEN_QUEUE waiting ones */
+
+/* A segment as stepgen_push prepares it; while it runs, its axes are the interrupt's state.  The
+ * ring has room for the running segment besides the waiting ones, so that the producer never
+ * writes the running slot: the positions are computed from it. */
+typedef struct {
+    stepgen_axis ax[STEPGEN_AXES]; /* the interrupt's state (err = -span at the start) */
+    int32_t start[STEPGEN_AXES];   /* positions when the segment begins */
+    uint32_t delta[STEPGEN_AXES];  /* |steps| of each axis, within the segment's capacity */
+    uint32_t event;                /* the first tick after which the interrupt must look again */
+    uint8_t forward_mask;          /* bit i: axis i moves forward (an axis at rest keeps its pin) */
+    uint8_t held_mask;             /* axes that change direction: quiet for dir_setup_ticks */
+    bool overrun;                  /* it asked more than its capacity (counted when it starts) */
+} stepgen_segment;
 
 typedef struct {
     stepgen_config cfg;
-    stepgen_axis ax[STEPGEN_AXES];
-    uint32_t tick;     /* ticks elapsed in the running segment */
+    /* The interrupt's: the running (or last) segment. */
+    uint32_t cur;      /* its slot in ring */
+    uint32_t tick;     /* ticks elapsed in it */
+    uint32_t event;    /* the end of the direction set-up, then the segment's last tick */
     bool running;
     uint8_t forward_mask;
-    /* Single-producer single-consumer ring of queued setpoints. */
-    int32_t queue[STEPGEN_QUEUE][STEPGEN_AXES];
+    atomic_uint seq;   /* odd while the interrupt switches segments (see stepgen_positions) */
+    /* Single-producer single-consumer ring of prepared segments. */
+    stepgen_segment ring[STEPGEN_RING];
     atomic_uint head; /* written by the producer */
-    atomic_uint tail; /* written by the consumer */
+    atomic_uint tail; /* written by the consumer: segments started */
     atomic_bool halted; /* set by stepgen_halt, cleared by stepgen_abort */
+    /* The producer's: where the queued segments leave the axes, which they reach exactly. */
+    int32_t planned[STEPGEN_AXES];
+    uint8_t planned_forward;
     uint32_t overruns;  /* segments that asked more than their capacity */
     uint32_t underruns; /* segment ends with nothing queued while not at rest */
 } stepgen;
@@ -96,9 +123,12 @@ void stepgen_halt(stepgen *sg);
  * finds nothing to do. */
 void stepgen_abort(stepgen *sg);
 
-/* Position bookkeeping (homing sets the zero).  Only while idle; returns -1 otherwise. */
+/* Position bookkeeping (homing sets the zero).  Only while idle; returns -1 otherwise.  From the
+ * producer's context. */
 int stepgen_set_position(stepgen *sg, const int32_t position[STEPGEN_AXES]);
 
+/* Steps emitted so far, exactly, while the interrupt runs.  From the producer's context (or any
+ * context the step interrupt may preempt but not the reverse). */
 void stepgen_positions(const stepgen *sg, int32_t out[STEPGEN_AXES]);
 
 #endif
