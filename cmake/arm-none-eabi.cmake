@@ -15,8 +15,10 @@ set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
 set(TSE_CPU_FLAGS "-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard")
 # -fstack-usage -fcallgraph-info=su: each object gets a .su (frame of each function) and a .ci
 # (call graph with the frames) beside it; cmake/stack_report.py adds them up for an image.
+# -g: debug information stays in the .elf (the .bin and .hex carry none), so gdb can read the
+# board's state by name, as the boot test does.
 set(CMAKE_C_FLAGS_INIT
-    "${TSE_CPU_FLAGS} -ffunction-sections -fdata-sections -fno-common -fstack-usage -fcallgraph-info=su")
+    "${TSE_CPU_FLAGS} -g -ffunction-sections -fdata-sections -fno-common -fstack-usage -fcallgraph-info=su")
 set(CMAKE_ASM_FLAGS_INIT "${TSE_CPU_FLAGS}")
 set(CMAKE_EXE_LINKER_FLAGS_INIT "${TSE_CPU_FLAGS} -Wl,--gc-sections --specs=nano.specs")
 

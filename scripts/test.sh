@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sets up the machine, then builds and runs every test: the host build, the sanitizer build, and
-# the board build (whose float kinematics must not pull in software double arithmetic).
+# the board build (whose float kinematics must not pull in software double arithmetic, whose
+# image must fit its flash and RAM budgets) with its on-target tests on QEMU's netduinoplus2.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -14,6 +15,7 @@ for preset in host asan; do
   ctest --preset "$preset" -j "$jobs"
 done
 
-echo "=== stm32f4: cross build"
+echo "=== stm32f4: cross build, on-target tests"
 cmake --preset stm32f4 >/dev/null
 cmake --build --preset stm32f4 -j "$jobs"
+ctest --preset stm32f4 -L target -j "$jobs"

@@ -69,7 +69,7 @@ hal_stepper board_stepper_hal(uint32_t timer_hz)
     TSE_TIM4->DIER = TIM_DIER_UIE;
     timing(0, 2000u, 0u);
     tse_nvic_enable(IRQ_TIM4, PRIO_PULSE);
-    const hal_stepper h = {.ctx = 0, .set_dir = set_dir, .pulse = pulse, .enable = enable};
+    const hal_stepper h = {0, set_dir, pulse, enable, timing};
     return h;
 }
 

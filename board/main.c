@@ -1,0 +1,161 @@
+/* tse-fw: the controller firmware on its board (STM32F405/407).
+ *
+ * The same firmware as the simulator (host_tools/tse_sim), on hal/stm32f4: start-up faults are
+ * recorded and reported rather than hung on; the step interrupt (TIM2) runs the step generator;
+ * the main loop runs each control tick (TIM3) - frames in and out, supervision, the next segment
+ * - then feeds the watchdog; the e-stop input interrupts whatever runs and halts stepping itself.
+ * Everything the controller holds changes in the main loop's context only, so there is no lock. */
+#include <string.h>
+
+#include "fw/controller.h"
+#include "hal_stm32f4/board_io.h"
+#include "hal_stm32f4/bxcan.h"
+#include "hal_stm32f4/clock.h"
+#include "hal_stm32f4/fault.h"
+#include "hal_stm32f4/flash_f4.h"
+#include "hal_stm32f4/iwdg.h"
+#include "hal_stm32f4/param_log.h"
+#include "hal_stm32f4/pinmap.h"
+#include "hal_stm32f4/regs_can.h"
+#include "hal_stm32f4/regs_core.h"
+
+#ifndef TSE_BOARD_NODE
+#define TSE_BOARD_NODE 1
+#endif
+
+#define CONTROL_HZ 1000u
+#define STEP_HZ 200000u
+/* Longer than the longest pause of the main loop: validating a 5 s move takes about 120 ms
+ * (scripts/target_bench.sh), a parameter save's sector erase feeds the watchdog itself. */
+#define WATCHDOG_MS 2000u
+
+/* Everything the board holds, in one place a debugger (and the boot test) can read. */
+typedef struct {
+    fw_controller fw;
+    board_ticker ticker;
+    bxcan_dev can;
+    param_log store;
+    board_clocks clocks;
+    board_fault_record previous; /* the fault that ended the last run, if any */
+    uint32_t boot_faults;        /* BOOT_FAULT_* bits */
+    int can_status;              /* bxcan_init's answer */
+    uint32_t control_calls;
+} board_state;
+
+enum {
+    BOOT_FAULT_CLOCK = 1u << 0,
+    BOOT_FAULT_CAN = 1u << 1,
+    BOOT_FAULT_WATCHDOG = 1u << 2,
+    BOOT_FAULT_PREVIOUS = 1u << 3, /* a HardFault or an unexpected interrupt ended the last run */
+    BOOT_FAULT_IWDG = 1u << 4,
+    BOOT_FAULT_STORAGE = 1u << 5,
+};
+
+board_state tse_board;
+
+void CAN1_RX0_IRQHandler(void);
+void CAN1_TX_IRQHandler(void);
+void CAN1_SCE_IRQHandler(void);
+
+void CAN1_RX0_IRQHandler(void)
+{
+    bxcan_rx0_isr(&tse_board.can);
+}
+
+void CAN1_TX_IRQHandler(void)
+{
+    bxcan_tx_isr(&tse_board.can);
+}
+
+void CAN1_SCE_IRQHandler(void)
+{
+    bxcan_sce_isr(&tse_board.can);
+}
+
+static void on_estop(void *arg)
+{
+    fw_estop_isr(arg);
+}
+
+static void step(void *arg)
+{
+    board_state *b = arg;
+    fw_step_tick(&b->fw);
+}
+
+static void control(void *arg)
+{
+    board_state *b = arg;
+    fw_poll(&b->fw);
+    fw_control_tick(&b->fw);
+    ++b->control_calls;
+    /* On the internal oscillator every timing is off (and the step interrupt runs slowed): the
+     * hardware fault comes back at once if cleared, until a restart finds the crystal. */
+    if ((b->boot_faults & BOOT_FAULT_CLOCK) && b->fw.state != FW_STATE_FAULT && b->fw.state != FW_STATE_ESTOP)
+        fw_report_fault(&b->fw, FW_FAULT_HARDWARE);
+    /* The status LED: steady while enabled, a 1 Hz blink otherwise, fast in a fault. */
+    const uint32_t period = b->fw.state == FW_STATE_FAULT || b->fw.state == FW_STATE_ESTOP ? 200u : 1000u;
+    const bool on = b->fw.drives_on || (b->control_calls % period) < period / 2u;
+    PIN_LED_PORT->BSRR = on ? 1u << PIN_LED : 1u << (PIN_LED + 16u);
+}
+
+int main(void)
+{
+    board_state *b = &tse_board;
+    if (board_fault_take(&b->previous))
+        b->boot_faults |= BOOT_FAULT_PREVIOUS;
+    if (board_reset_was_watchdog()) {
+        b->boot_faults |= BOOT_FAULT_WATCHDOG;
+        board_fault_note(BOARD_FAULT_WATCHDOG_RESET, "IWDG");
+    }
+    b->clocks = board_clock_init();
+    if (b->clocks.failed) {
+        b->boot_faults |= BOOT_FAULT_CLOCK;
+        board_fault_note(BOARD_FAULT_TIMEOUT, b->clocks.failed);
+    }
+    board_clock_enable_peripherals();
+    board_pins_init();
+
+    fw_hal hal;
+    memset(&hal, 0, sizeof hal);
+    hal.stepper = board_stepper_hal(b->clocks.apb1_timer_hz);
+    hal.inputs = board_inputs_hal();
+    hal.clock = board_clock_hal(b->clocks.apb1_timer_hz);
+    hal.can = bxcan_hal(&b->can);
+    if (param_log_init(&b->store, flash_f4_ops(flash_f4_feed_iwdg)) != 0)
+        b->boot_faults |= BOOT_FAULT_STORAGE;
+    hal.storage = param_log_hal(&b->store);
+
+    const fw_config cfg = {TSE_BOARD_NODE, CONTROL_HZ, STEP_HZ};
+    if (fw_init(&b->fw, &hal, &cfg) != 0)
+        board_unexpected_irq(); /* a configuration that cannot run: record and stop */
+
+    /* CAN at the stored bit rate (a change takes effect here, after a save and a restart).  A
+     * controller that has not yet seen an idle bus joins it by itself later: not a fault. */
+    b->can_status = bxcan_init(&b->can, TSE_CAN1, b->clocks.apb1_hz,
+                               (uint32_t)b->fw.params.v[FP_CAN_KBPS] * 1000u, TSE_BOARD_NODE, 0);
+    if (b->can_status == BXCAN_OK || b->can_status == BXCAN_ERR_LEAVE_INIT) {
+        tse_nvic_enable(IRQ_CAN1_RX0, PRIO_CAN);
+        tse_nvic_enable(IRQ_CAN1_TX, PRIO_CAN);
+        tse_nvic_enable(IRQ_CAN1_SCE, PRIO_CAN);
+    } else {
+        b->boot_faults |= BOOT_FAULT_CAN;
+        board_fault_note(BOARD_FAULT_TIMEOUT, bxcan_status_str((bxcan_status)b->can_status));
+    }
+
+    if (board_iwdg_start(WATCHDOG_MS) != 0)
+        b->boot_faults |= BOOT_FAULT_IWDG;
+    /* The controller refuses to move until a hardware fault is cleared: a clock on the internal
+     * oscillator or a CAN controller that never synchronised changes every timing it relies on. */
+    if (b->boot_faults)
+        fw_report_fault(&b->fw, FW_FAULT_HARDWARE);
+    board_estop_irq_init(on_estop, &b->fw);
+
+    b->ticker.timer_hz = b->clocks.apb1_timer_hz;
+    b->ticker.idle = board_iwdg_feed;
+    hal_ticker t = board_ticker_hal(&b->ticker);
+    /* At 16 MHz a 200 kHz step interrupt would leave the main loop nothing: a tenth of it keeps
+     * the board alive and inspectable while it cannot move anyway. */
+    t.start(t.ctx, CONTROL_HZ, control, b->clocks.failed ? STEP_HZ / 10u : STEP_HZ, step, b);
+    board_unexpected_irq(); /* the main loop never returns */
+}
