@@ -80,10 +80,12 @@ int fw_apply_params(fw_controller *c, const fw_param_set *s)
     const uint32_t pulse_ns = (uint32_t)s->v[FP_STEP_PULSE_NS], dir_ns = (uint32_t)s->v[FP_DIR_SETUP_NS];
     if (!pulse_fits(pulse_ns, c->cfg.step_hz, interval))
         return -1;
-    /* DIR set-up in whole ticks, rounded up, and at least one (the generator's own minimum). */
+    /* DIR set-up in whole ticks, rounded up, plus one: DIR and STEP are both written inside step
+     * interrupts, at offsets that vary with the interrupt's work (a segment's first tick does
+     * more), so a set-up of exactly the asked ticks could come out a fraction of a microsecond
+     * short on the board.  No set-up asked: the generator's own minimum of one. */
     uint64_t setup = ((uint64_t)dir_ns * c->cfg.step_hz + 999999999u) / 1000000000u;
-    if (setup == 0)
-        setup = 1;
+    setup = dir_ns == 0 ? 1u : setup + 1u;
     const uint32_t per_segment = c->cfg.step_hz / c->cfg.segment_hz;
     if (setup >= per_segment)
         return -1; /* no room for a step in a segment that changes direction */
@@ -439,7 +441,10 @@ static void supervise(fw_controller *c)
     }
     hal_can_state cs;
     c->hal.can.state(c->hal.can.ctx, &cs);
-    if (cs.bus_off && c->state != FW_STATE_FAULT)
+    /* A bus-off that recovered since the last look counts as much as one that lasts. */
+    const bool went_bus_off = cs.bus_off_events != c->bus_off_seen;
+    c->bus_off_seen = cs.bus_off_events;
+    if ((cs.bus_off || went_bus_off) && c->state != FW_STATE_FAULT)
         fw_fault_raise(c, FW_FAULT_BUS_OFF);
     const uint32_t wd = (uint32_t)c->params.v[FP_WATCHDOG_MS];
     if (wd > 0 && c->drives_on && now_us(c) - c->last_heartbeat_us > (uint64_t)wd * 1000u)

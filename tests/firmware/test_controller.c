@@ -645,6 +645,21 @@ static void test_bus_off(void **state)
     assert_int_equal(C.fault, FW_FAULT_BUS_OFF);
 }
 
+/* A bus-off that automatic recovery ended before the controller looked: only its count moved,
+ * and a status frame read the CAN state in between.  It is a fault all the same. */
+static void test_bus_off_recovered_between_looks(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    run(10);
+    assert_int_equal(C.state, FW_STATE_IDLE);
+    F.can_state.bus_off = false;
+    F.can_state.bus_off_events = 1;
+    run(10);
+    assert_int_equal(C.state, FW_STATE_FAULT);
+    assert_int_equal(C.fault, FW_FAULT_BUS_OFF);
+}
+
 /* The drivers' timing: programmed through hal_stepper.timing at start-up and on every accepted
  * set; DIR set-up turned into whole step interrupts (here 100 kHz, 10 us each), rounded up; a STEP
  * pulse refused unless it ends within its 10 us tick and leaves a low time as long as the high
@@ -656,11 +671,11 @@ static void test_driver_timing(void **state)
     assert_int_equal(F.timing_calls, 1);
     assert_int_equal(F.pulse_ns, 2000);
     assert_int_equal(F.dir_setup_ns, 5000);
-    assert_int_equal(C.sg.cfg.dir_setup_ticks, 1); /* 5 us is half a tick: one */
+    assert_int_equal(C.sg.cfg.dir_setup_ticks, 2); /* 5 us is half a tick: one, plus one of margin */
     const struct {
         int32_t ns;
         uint32_t ticks;
-    } setups[] = {{25000, 3}, {20000, 2}, {20001, 3}, {1, 1}, {0, 1}};
+    } setups[] = {{25000, 4}, {20000, 3}, {20001, 4}, {1, 2}, {0, 1}};
     for (size_t i = 0; i < sizeof setups / sizeof setups[0]; ++i) {
         assert_int_equal(set_param(FP_DIR_SETUP_NS, setups[i].ns, NULL, NULL), 'a');
         assert_int_equal(C.sg.cfg.dir_setup_ticks, setups[i].ticks);
@@ -916,6 +931,7 @@ int main(void)
         cmocka_unit_test(test_homing_from_below),
         cmocka_unit_test(test_homing_per_slide_switch),
         cmocka_unit_test(test_bus_off),
+        cmocka_unit_test(test_bus_off_recovered_between_looks),
         cmocka_unit_test(test_driver_timing),
         cmocka_unit_test(test_switch_change_needs_homing),
         cmocka_unit_test(test_estop_interrupt_mid_tick),

@@ -19,7 +19,10 @@ typedef struct {
     uint8_t tx_errors;    /* transmit error counter */
     uint8_t rx_errors;    /* receive error counter */
     bool error_passive;
-    bool bus_off;
+    bool bus_off;         /* in bus-off now */
+    /* Times the controller has gone bus-off since it started: a bus-off that automatic recovery
+     * ended between two looks still shows here, whoever else read the state meanwhile. */
+    uint32_t bus_off_events;
     uint32_t rx_overruns; /* frames lost because the receive queue was full */
 } hal_can_state;
 

@@ -77,8 +77,10 @@ static int can_receive(void *ctx, hal_can_frame *f)
         if (n != (ssize_t)sizeof fr)
             return 0;
         if (fr.can_id & CAN_ERR_FLAG) {
-            if (fr.can_id & CAN_ERR_BUSOFF)
+            if ((fr.can_id & CAN_ERR_BUSOFF) && !c->state.bus_off) {
                 c->state.bus_off = true;
+                ++c->state.bus_off_events;
+            }
             if (fr.can_id & CAN_ERR_RESTARTED)
                 c->state.bus_off = false;
             if ((fr.can_id & CAN_ERR_CRTL) && (fr.data[1] & (CAN_ERR_CRTL_RX_PASSIVE | CAN_ERR_CRTL_TX_PASSIVE)))

@@ -72,7 +72,6 @@ static void reset_dev(bxcan_dev *dev, tse_can_regs *regs)
     atomic_init(&dev->rx_overruns, 0u);
     atomic_init(&dev->bus_off_events, 0u);
     dev->boff_seen = false;
-    dev->bus_off_reported = 0;
 }
 
 bxcan_status bxcan_init(bxcan_dev *dev, tse_can_regs *regs, uint32_t pclk_hz, uint32_t bitrate,
@@ -260,9 +259,8 @@ static void can_state(void *ctx, hal_can_state *st)
     st->tx_errors = (uint8_t)(esr >> CAN_ESR_TEC_SHIFT);
     st->rx_errors = (uint8_t)(esr >> CAN_ESR_REC_SHIFT);
     st->error_passive = (esr & CAN_ESR_EPVF) != 0;
-    /* Sticky: a bus-off counted since the last call is reported even if already recovered. */
-    st->bus_off = (esr & CAN_ESR_BOFF) != 0 || events != dev->bus_off_reported;
-    dev->bus_off_reported = events;
+    st->bus_off = (esr & CAN_ESR_BOFF) != 0;
+    st->bus_off_events = events; /* a bus-off already recovered still counts here */
     st->rx_overruns = atomic_load_explicit(&dev->rx_overruns, memory_order_relaxed);
 }
 

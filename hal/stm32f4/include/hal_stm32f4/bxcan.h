@@ -9,9 +9,8 @@
  *   mailboxes are loaded in ring order);
  * - FIFO 0 receives only standard data frames for this node or node 0 (bxcan_filter.h);
  * - a frame lost on reception (hardware FIFO overrun, or the rx ring full) counts in rx_overruns;
- * - bus-off is sticky for one state() call: once the controller went bus-off, the next state()
- *   says bus_off even if automatic recovery (ABOM) has already brought it back; every entry into
- *   bus-off counts in bus_off_events;
+ * - every entry into bus-off counts in bus_off_events, which state() reports: a bus-off that
+ *   automatic recovery (ABOM) ended before the firmware looked is still seen, by every reader;
  * - every wait on a hardware flag is bounded (BXCAN_WAIT_LOOPS iterations, each calling `idle`),
  *   so init returns, naming the flag, on a board without a working controller (QEMU reads the
  *   bxCAN as zeros) or without a bus.
@@ -63,7 +62,6 @@ typedef struct {
     _Atomic uint32_t rx_overruns;    /* written by bxcan_rx0_isr only */
     _Atomic uint32_t bus_off_events; /* written by bxcan_sce_isr only */
     bool boff_seen;                  /* bxcan_sce_isr's last view of ESR.BOFF */
-    uint32_t bus_off_reported;       /* state()'s copy of bus_off_events at its last call */
 } bxcan_dev;
 
 /* Resets *dev, then sets up the controller at `regs`: initialisation mode, bit timing for
