@@ -126,7 +126,8 @@ int main(void)
         b->boot_faults |= BOOT_FAULT_STORAGE;
     hal.storage = param_log_hal(&b->store);
 
-    const fw_config cfg = {TSE_BOARD_NODE, CONTROL_HZ, STEP_HZ};
+    /* No blending: its validation would hold the main loop, and with it the control tick. */
+    const fw_config cfg = {TSE_BOARD_NODE, CONTROL_HZ, STEP_HZ, true};
     if (fw_init(&b->fw, &hal, &cfg) != 0)
         board_unexpected_irq(); /* a configuration that cannot run: record and stop */
 

@@ -199,7 +199,7 @@ static void bench_controller(void)
     hal.inputs = (hal_inputs){0, in_limits, in_estop};
     hal.clock = (hal_clock){0, clk_now};
     hal.storage = (hal_storage){0, st_load, st_save};
-    const fw_config cfg = {1, 1000, 200000};
+    const fw_config cfg = {1, 1000, 200000, true};
     if (fw_init(&ctl, &hal, &cfg) != 0) {
         sh_puts("bench: controller did not start\n");
         return;

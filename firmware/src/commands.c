@@ -134,7 +134,7 @@ static void move_commit(fw_controller *c, const proto_message *m, uint8_t functi
         return;
     }
     const bool queued = c->state == FW_STATE_MOVING;
-    if (queued && (c->src != FW_SRC_MOVE || c->stopping)) {
+    if (queued && (c->src != FW_SRC_MOVE || c->stopping || c->cfg.no_blend)) {
         fw_reject(c, function, seq, FW_REASON_STATE, 0, NULL);
         return;
     }

@@ -154,7 +154,7 @@ int main(int argc, char **argv)
     hal.inputs = plant_inputs(&s.plant);
     hal.clock = posix_clock_hal();
     hal.storage = posix_storage_hal(&storage);
-    const fw_config cfg = {(uint8_t)node, CONTROL_HZ, STEP_HZ};
+    const fw_config cfg = {(uint8_t)node, CONTROL_HZ, STEP_HZ, false};
     if (fw_init(&s.fw, &hal, &cfg) != 0) {
         fprintf(stderr, "tse-sim: the controller did not start\n");
         return 1;

@@ -24,7 +24,7 @@ static void start(void)
     fake_hal_init(&F, &hal);
     for (int k = 0; k < 6; ++k)
         F.steps[k] = FAKE_SWITCH_AT + 3000 + 100 * k; /* just above the switches: homing is short */
-    const fw_config cfg = {1, 1000, 100000};
+    const fw_config cfg = {1, 1000, 100000, false};
     assert_int_equal(fw_init(&C, &hal, &cfg), 0);
     seq = 1;
 }
@@ -250,6 +250,31 @@ static void test_move_lands_on_target_steps(void **state)
         const long want = lround(r.q[k] * 1280000.0);
         assert_int_equal(F.steps[k], want);
     }
+}
+
+/* With no_blend (the board), a move committed during another is refused as out of state and
+ * the running move goes on untouched to its own target. */
+static void test_no_blend(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    C.cfg.no_blend = true;
+    const double first[6] = {0.06, 0.0, 1.05, 0, 0, 0}, second[6] = {0.06, 0.06, 1.10, 0, 0, 0.05};
+    move_to(first, 1500);
+    run(200);
+    const unsigned from = F.tx_count;
+    move_to(second, 1500);
+    run(10);
+    uint8_t reason = 0;
+    assert_int_equal(answer(from, 0x0D, &reason), 'r');
+    assert_int_equal(reason, FW_REASON_STATE);
+    assert_false(C.has_next);
+    assert_int_equal(C.state, FW_STATE_MOVING);
+    for (int i = 0; i < 400 && C.state != FW_STATE_IDLE; ++i)
+        run(10);
+    assert_int_equal(C.state, FW_STATE_IDLE);
+    for (int k = 0; k < 6; ++k)
+        assert_true(fabs(C.pose[k] - first[k]) < 1e-9);
 }
 
 /* A move committed during another is blended in: the slides do not come to rest between the two,
@@ -889,7 +914,7 @@ static void test_params_over_can(void **state)
     fake_hal_init(&F, &hal);
     memcpy(F.storage, saved, sizeof saved);
     F.storage_len = len;
-    const fw_config cfg = {1, 1000, 100000};
+    const fw_config cfg = {1, 1000, 100000, false};
     assert_int_equal(fw_init(&C, &hal, &cfg), 0);
     assert_int_equal(C.params.v[FP_SLIDE_VMAX], 150000);
     /* A failing store is reported. */
@@ -920,6 +945,7 @@ int main(void)
         cmocka_unit_test(test_state_table),
         cmocka_unit_test(test_move_lands_on_target_steps),
         cmocka_unit_test(test_blended_moves),
+        cmocka_unit_test(test_no_blend),
         cmocka_unit_test(test_staging_is_atomic),
         cmocka_unit_test(test_unreachable_pose_rejected_without_motion),
         cmocka_unit_test(test_malformed_frames),

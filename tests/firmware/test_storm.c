@@ -101,7 +101,7 @@ static void test_storm(void **state)
     fake_hal_init(&F, &hal);
     for (int k = 0; k < 6; ++k)
         F.steps[k] = FAKE_SWITCH_AT + 3000; /* just above the homing switches */
-    const fw_config cfg = {1, 1000, 100000};
+    const fw_config cfg = {1, 1000, 100000, false};
     assert_int_equal(fw_init(&C, &hal, &cfg), 0);
     unsigned states_seen = 0;
     uint8_t seq = 100;

@@ -425,7 +425,7 @@ static void boot_and_params(void)
     hal.inputs = (hal_inputs){0, in_limits, in_estop};
     hal.clock = (hal_clock){0, clk_now};
     hal.storage = (hal_storage){0, sto_load, sto_save};
-    const fw_config cfg = {NODE, SEGMENT_HZ, STEP_HZ};
+    const fw_config cfg = {NODE, SEGMENT_HZ, STEP_HZ, true}; /* as the board runs it */
     TT_CHECK(fw_init(&C, &hal, &cfg) == 0);
     host.seq = 1;
     run(5);

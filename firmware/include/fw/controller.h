@@ -47,6 +47,11 @@ typedef struct {
     uint8_t node;        /* 1..15 */
     uint32_t segment_hz; /* control segments per second (>= 1000 on the board) */
     uint32_t step_hz;    /* step interrupts per second, a multiple of segment_hz */
+    /* Refuse (FW_REASON_STATE) a move committed while another runs instead of blending it.  For
+     * a platform whose main loop both handles commands and runs the control tick (the board):
+     * validating the blend there takes tens of milliseconds, during which the running move's
+     * setpoints would stop coming and its slides would halt at speed. */
+    bool no_blend;
 } fw_config;
 
 /* What a command may do in a state: accept, or refuse with a reason.  One row per command
