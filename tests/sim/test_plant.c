@@ -337,6 +337,16 @@ static void test_homing_from_above_own_switches(void **state)
     }
 }
 
+/* The geometry of the controller's default parameters. */
+static void default_geometry(tse_geometry *g)
+{
+    fw_param_set ps;
+    fw_params_default(&ps);
+    tse_params kp;
+    fw_params_kinematics(&ps, &kp);
+    assert_int_equal(tse_geometry_init(g, &kp), TSE_PARAM_OK);
+}
+
 /* Lost steps, simulated by moving a slide 5 mm behind the controller's back: slide 1, homed 2 mm
  * above its switch, pushed down to 3 mm below it (its switch pressed while the count says above);
  * then slide 2, homed 2 mm below its switch, pushed up past it.  Each is a limit fault, the zero
@@ -344,12 +354,8 @@ static void test_homing_from_above_own_switches(void **state)
 static void test_lost_steps_fault(void **state)
 {
     (void)state;
-    fw_param_set ps;
-    fw_params_default(&ps);
-    tse_params kp;
-    fw_params_kinematics(&ps, &kp);
     tse_geometry g;
-    assert_int_equal(tse_geometry_init(&g, &kp), TSE_PARAM_OK);
+    default_geometry(&g);
     const int32_t home_um = (int32_t)lround(g.home_s * 1e6);
     for (int slide = 0; slide < 2; ++slide) {
         int32_t sw[6] = {200000, 200000, 200000, 200000, 200000, 200000};
@@ -389,12 +395,8 @@ static void test_motion_below_switch(void **state)
 static void test_plant_switches_and_timing(void **state)
 {
     (void)state;
-    fw_param_set ps;
-    fw_params_default(&ps);
-    tse_params kp;
-    fw_params_kinematics(&ps, &kp);
     tse_geometry g;
-    assert_int_equal(tse_geometry_init(&g, &kp), TSE_PARAM_OK);
+    default_geometry(&g);
     const plant_config pc = {1280000.0, 0.15, 1.0, 0.05, 100000, 1, 2000, 15000, {0.2, 0.2, 0.2, 0.2, 0.2, 0.2}};
     /* Slide 1 on its switch's last pressed step (0.2 m = 256000 steps), slide 2 a step above,
      * slide 3 a step beyond the high end (0.9 m). */

@@ -69,14 +69,16 @@ __attribute__((section(".isr_vector"), used)) static const vector vectors[16 + I
 };
 #undef D
 
-/* Why not memcpy/memset: they may be built with FPU instructions, and the FPU is not on yet. */
-static void copy_words(uint32_t *dst, const uint32_t *src, const uint32_t *end)
+/* Plain loops rather than memcpy/memset, which need not be safe before the FPU is on and .data
+ * exists; the attribute keeps GCC from turning the loops back into those calls. */
+#define NO_LIBCALLS __attribute__((optimize("no-tree-loop-distribute-patterns")))
+NO_LIBCALLS static void copy_words(uint32_t *dst, const uint32_t *src, const uint32_t *end)
 {
     while (dst < end)
         *dst++ = *src++;
 }
 
-static void zero_words(uint32_t *dst, const uint32_t *end)
+NO_LIBCALLS static void zero_words(uint32_t *dst, const uint32_t *end)
 {
     while (dst < end)
         *dst++ = 0;
