@@ -3,10 +3,9 @@
 
 #include <string.h>
 
+#include "fw/limits.h"
 #include "tse/fk.h"
 
-/* Planned slide motion keeps this much of the step generator's capacity in hand. */
-#define STEP_RATE_MARGIN TSE_R(0.9)
 /* Setpoints the control loop keeps queued ahead of the step interrupt. */
 #define QUEUE_AHEAD 2u
 /* Shortest controlled stop [s]. */
@@ -53,43 +52,14 @@ int32_t fw_home_switch_steps(const fw_controller *c, int k)
     return (int32_t)((int64_t)c->params.v[FP_HOME_SW_1 + k] * c->params.v[FP_STEPS_PER_M] / 1000000);
 }
 
-/* The STEP pulse against the step interrupt period T = 1e9 / step_hz ns: it must end within the
- * period it rose in (the step generator changes DIR only at a tick, so DIR never changes under a
- * high STEP, and a board that ends the pulse from its step timer has a compare within the period),
- * and the same slide's next rising edge, at least min_step_interval periods later, must leave a low
- * time at least as long as the high time. */
-static bool pulse_fits(uint32_t pulse_ns, uint32_t step_hz, uint32_t interval)
-{
-    const uint64_t high = (uint64_t)pulse_ns * step_hz; /* in units of 1e-9 periods */
-    return high < 1000000000u && 2u * high <= (uint64_t)interval * 1000000000u;
-}
-
 int fw_apply_params(fw_controller *c, const fw_param_set *s)
 {
-    tse_params kp;
     tse_geometry g;
-    if (fw_params_check(s) >= 0)
+    fw_limits lim;
+    stepgen_config sc;
+    if (fw_limits_from_params(s, c->cfg.step_hz, c->cfg.segment_hz, &g, &lim) != 0 ||
+        fw_stepgen_config_from_params(s, c->cfg.step_hz, c->cfg.segment_hz, &sc) != 0)
         return -1;
-    fw_params_kinematics(s, &kp);
-    if (tse_geometry_init(&g, &kp) != TSE_PARAM_OK)
-        return -1;
-    /* Two steps of one slide at least step_hz / step_rate_max ticks apart. */
-    uint32_t interval = (c->cfg.step_hz + (uint32_t)s->v[FP_STEP_RATE_MAX] - 1u) / (uint32_t)s->v[FP_STEP_RATE_MAX];
-    if (interval == 0)
-        interval = 1;
-    const uint32_t pulse_ns = (uint32_t)s->v[FP_STEP_PULSE_NS], dir_ns = (uint32_t)s->v[FP_DIR_SETUP_NS];
-    if (!pulse_fits(pulse_ns, c->cfg.step_hz, interval))
-        return -1;
-    /* DIR set-up in whole ticks, rounded up, plus one: DIR and STEP are both written inside step
-     * interrupts, at offsets that vary with the interrupt's work (a segment's first tick does
-     * more), so a set-up of exactly the asked ticks could come out a fraction of a microsecond
-     * short on the board.  No set-up asked: the generator's own minimum of one. */
-    uint64_t setup = ((uint64_t)dir_ns * c->cfg.step_hz + 999999999u) / 1000000000u;
-    setup = dir_ns == 0 ? 1u : setup + 1u;
-    const uint32_t per_segment = c->cfg.step_hz / c->cfg.segment_hz;
-    if (setup >= per_segment)
-        return -1; /* no room for a step in a segment that changes direction */
-    const stepgen_config sc = {per_segment, (uint32_t)setup, interval};
     int32_t pos[STEPGEN_AXES];
     stepgen_positions(&c->sg, pos);
     if (!stepgen_idle(&c->sg) || stepgen_init(&c->sg, &sc, pos) != 0)
@@ -101,7 +71,8 @@ int fw_apply_params(fw_controller *c, const fw_param_set *s)
     /* A fresh generator assumes its direction mask: make the pins agree with it. */
     c->hal.stepper.set_dir(c->hal.stepper.ctx, c->sg.forward_mask);
     if (c->hal.stepper.timing)
-        c->hal.stepper.timing(c->hal.stepper.ctx, pulse_ns, dir_ns);
+        c->hal.stepper.timing(c->hal.stepper.ctx, (uint32_t)s->v[FP_STEP_PULSE_NS],
+                              (uint32_t)s->v[FP_DIR_SETUP_NS]);
     /* The zero was set against the old switch positions and step size. */
     bool rezero = s->v[FP_STEPS_PER_M] != c->params.v[FP_STEPS_PER_M];
     for (int k = 0; k < 6; ++k)
@@ -112,25 +83,7 @@ int fw_apply_params(fw_controller *c, const fw_param_set *s)
     }
     c->params = *s;
     c->geom = g;
-    const tse_real micro = TSE_R(1e-6);
-    const tse_real spm = (tse_real)s->v[FP_STEPS_PER_M];
-    /* The step generator's ceiling, with room for the half-step rounding of each segment. */
-    const tse_real by_rate = STEP_RATE_MARGIN * (tse_real)s->v[FP_STEP_RATE_MAX] / spm;
-    const tse_real by_isr = STEP_RATE_MARGIN * (tse_real)stepgen_capacity(&c->sg.cfg, true) *
-                            (tse_real)c->cfg.segment_hz / spm;
-    tse_real vmax = (tse_real)s->v[FP_SLIDE_VMAX] * micro;
-    if (by_rate < vmax)
-        vmax = by_rate;
-    if (by_isr < vmax)
-        vmax = by_isr;
-    c->lim.slide_vmax = vmax;
-    c->lim.slide_amax = (tse_real)s->v[FP_SLIDE_AMAX] * micro;
-    c->lim.plate_vmax = (tse_real)s->v[FP_PLATE_VMAX] * micro;
-    c->lim.plate_amax = (tse_real)s->v[FP_PLATE_AMAX] * micro;
-    c->lim.plate_jmax = (tse_real)s->v[FP_PLATE_JMAX] * micro;
-    c->lim.plate_wmax = (tse_real)s->v[FP_PLATE_WMAX] * micro;
-    c->lim.plate_dwmax = (tse_real)s->v[FP_PLATE_DWMAX] * micro;
-    c->lim.segment_hz = (tse_real)c->cfg.segment_hz;
+    c->lim = lim;
     return 0;
 }
 
