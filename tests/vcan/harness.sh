@@ -1,31 +1,178 @@
 #!/usr/bin/env bash
-# Runs a scenario on a CAN bus: on vcan0 directly where this kernel has vcan, otherwise inside a
-# stock Debian kernel booted under QEMU (this machine's kernel has no CAN; see system.md).
+# Runs a scenario on a CAN bus: on vcan0 directly where this kernel has vcan (as root), otherwise
+# inside a stock Debian kernel booted under QEMU (this machine's kernel has no CAN; see system.md).
 #
-#   harness.sh SCENARIO WORKDIR BINARY...
+#   harness.sh [--file PATH]... SCENARIO WORKDIR [BINARY...]
 #
-# SCENARIO is a shell script run with vcan0 up, the BINARIES on its PATH and can-utils beside
-# them; it prints what it checks and ends with 'N passed, M failed'.  Its output comes back on
-# stdout; the exit status is the scenario's.
+# SCENARIO is a shell script (run by busybox sh on both paths) with vcan0 up, the BINARIES on its
+# PATH and can-utils (cansend, candump) beside them; it prints what it checks and ends with
+# 'N passed, M failed'.  Its output comes back on stdout; the exit status is the scenario's.
+# WORKDIR holds what the harness builds or keeps (the kernel, the initramfs, the console log).
+#
+# Data files: each --file PATH, and each path in HARNESS_FILES (separated by spaces), is copied
+# into the scenario's working directory under its own name, so the scenario opens it as
+# ./NAME.  That directory is /tmp in the VM and a fresh WORKDIR/run on vcan0, so a scenario is
+# written once for both.  A missing file, two files with the same name, a missing scenario or
+# binary, or a bad HARNESS_TIMEOUT is an error naming it (exit 2) before anything is set up.
+#
+# Environment:
+#   HARNESS_FILES="a.csv p.txt"  data files, as --file (use --file for a path with a space)
+#   HARNESS_LIVE=1               show the scenario's output as it happens (VM path: progress bars
+#                                included) instead of all at once when the VM has powered off
+#   HARNESS_TIMEOUT=SECONDS      the scenario's time limit (default 480).  A scenario still
+#                                running then is killed, with everything it started, and the
+#                                harness prints "harness: the scenario timed out after S s; it was
+#                                running: COMMAND (scenario line N)" and exits 124.  The VM's own
+#                                limit is 120 s above it.
+#
+# Where a hang was: the scenario runs under 'sh -x' with its trace on file descriptor 9 (busybox
+# sh's BASH_XTRACEFD), so its stdout and stderr are untouched; the trace is read only after a
+# time-out.  A scenario must leave fd 9 alone.  The command shown is the latest the scenario's own
+# flow reached; a background loop of the scenario still running at the time-out can show instead.
+# On vcan0 the whole trace is kept in WORKDIR/scenario.trace, and the run directory in WORKDIR/run.
 set -u
+
+usage() {
+  cat <<'EOF'
+usage: harness.sh [--file PATH]... SCENARIO WORKDIR [BINARY...]
+Runs SCENARIO on vcan0 (here, or in a QEMU VM when this kernel has no CAN) with the BINARIES on its
+PATH; each --file PATH (and each path in HARNESS_FILES) is copied into its working directory.
+Environment: HARNESS_FILES, HARNESS_LIVE=1, HARNESS_TIMEOUT=SECONDS (default 480); see the header
+of this script.
+EOF
+}
+die() { echo "harness: $*" >&2; exit 2; }
+
+# --- Arguments, all checked before anything is set up.
+files=()
+read -r -d '' -a env_files <<<"${HARNESS_FILES:-}" # spaces, tabs or newlines between paths
+files+=(${env_files[@]+"${env_files[@]}"})
+while [ $# -gt 0 ]; do
+  case $1 in
+    --file) [ $# -ge 2 ] || die "--file needs a PATH"; files+=("$2"); shift 2 ;;
+    --file=*) files+=("${1#--file=}"); shift ;;
+    -h | --help) usage; exit 0 ;;
+    --) shift; break ;;
+    -*) die "unknown option '$1' (options: --file PATH, --help)" ;;
+    *) break ;;
+  esac
+done
+[ $# -ge 2 ] || { usage >&2; exit 2; }
 scenario=$1
 work=$2
 shift 2
-mkdir -p "$work"
+[ -e "$scenario" ] || die "scenario not found: $scenario"
+[ -f "$scenario" ] && [ -r "$scenario" ] || die "scenario is not a readable file: $scenario"
+scenario=$(readlink -f "$scenario")
+for b in "$@"; do
+  [ -e "$b" ] || die "binary not found: $b"
+  [ -f "$b" ] && [ -x "$b" ] || die "binary is not an executable file: $b"
+done
+declare -A seen=()
+for f in ${files[@]+"${files[@]}"}; do
+  [ -n "$f" ] || die "empty data file name"
+  [ -e "$f" ] || die "data file not found: $f"
+  [ -f "$f" ] || die "data file is not a regular file: $f"
+  [ -r "$f" ] || die "data file is not readable: $f"
+  name=$(basename "$f")
+  [ -z "${seen[$name]+x}" ] || die "two data files named $name: ${seen[$name]} and $f"
+  seen[$name]=$f
+done
+limit=${HARNESS_TIMEOUT:-480}
+case $limit in
+  '' | *[!0-9]*) die "HARNESS_TIMEOUT must be a whole number of seconds, not '$limit'" ;;
+esac
+[ ${#limit} -le 6 ] && [ $((10#$limit)) -ge 1 ] ||
+  die "HARNESS_TIMEOUT must be between 1 and 999999 seconds, not '$limit'"
+limit=$((10#$limit))
+
+mkdir -p "$work" || die "cannot create the work directory $work"
 work=$(readlink -f "$work")
 
+# The trace: one line per command, '+SEQ LINE: COMMAND'.  SEQ counts the commands each shell
+# process traces; a subshell (background job, command substitution, pipeline) continues from its
+# parent's count at the fork, so the highest SEQ is where the scenario's flow got to, whatever
+# order concurrent processes wrote their lines in.  Equal SEQ: the higher scenario line (a
+# background job traces its command with the count its parent gives the next one).
+PS4_TRACE='+$((_harness_seq+=1)) $LINENO: '
+last_command() {
+  awk 'match($0, /^\+[0-9]+ [0-9]+: /) {
+         split(substr($0, 2, RLENGTH - 3), f, " "); seq = f[1] + 0; line = f[2] + 0
+         if (seq > bs || (seq == bs && line >= bl)) { bs = seq; bl = line; bc = substr($0, RLENGTH + 1) }
+       }
+       END { if (bs) printf "%s (scenario line %d)\n", bc, bl }' "$1"
+}
+report_timeout() {
+  local where
+  where=$(last_command "$1")
+  if [ -n "$where" ]; then
+    echo "harness: the scenario timed out after $limit s; it was running: $where"
+  else
+    echo "harness: the scenario timed out after $limit s (it traced no command)"
+  fi
+}
+
+# --- vcan0 on this kernel.
 if [ "$(id -u)" -eq 0 ] && ip link add dev vcan0 type vcan 2>/dev/null; then
   ip link set vcan0 up
   echo "harness: vcan0 on this kernel"
-  export PATH="$(dirname "$(readlink -f "$1")"):$PATH"
-  for b in "$@"; do export PATH="$(dirname "$(readlink -f "$b")"):$PATH"; done
-  sh "$scenario"
+  for b in "$@"; do PATH="$(dirname "$(readlink -f "$b")"):$PATH"; done
+  export PATH
+  run="$work/run"
+  trace="$work/scenario.trace"
+  flag="$work/timed-out"
+  rm -rf "$run" "$flag"
+  mkdir -p "$run"
+  for f in ${files[@]+"${files[@]}"}; do cp "$f" "$run/"; done
+  # busybox sh, as in the VM; without it the scenario runs untraced under sh.
+  if command -v busybox >/dev/null 2>&1; then shell=(busybox sh -x); else shell=(sh); fi
+  spid=
+  wpid=
+  stop() {
+    [ -z "$wpid" ] || kill -KILL -- "-$wpid" 2>/dev/null
+    [ -z "$spid" ] || kill -KILL -- "-$spid" 2>/dev/null
+    ip link del vcan0 2>/dev/null
+  }
+  trap 'stop; exit 130' INT
+  trap 'stop; exit 143' TERM HUP
+  # The scenario and the watchdog each lead a process group of their own, so that either can be
+  # ended with everything it started.  stdin stays the harness's (fd 3 around the '&').
+  exec 3<&0
+  (cd "$run" && exec env BASH_XTRACEFD=9 PS4="$PS4_TRACE" setsid "${shell[@]}" "$scenario" 9>"$trace" <&3 3<&-) &
+  spid=$!
+  setsid bash -c 'sleep "$1" && : >"$2" && kill -TERM -- "-$3"; sleep 2; kill -KILL -- "-$3"' \
+    watchdog "$limit" "$flag" "$spid" </dev/null >/dev/null 2>&1 &
+  wpid=$!
+  disown "$wpid" # ended below without a job notice
+  exec 3<&-
+  wait "$spid"
   rc=$?
+  kill -KILL -- "-$wpid" 2>/dev/null
+  wpid=
+  timed_out=
+  if [ -e "$flag" ]; then
+    kill -KILL -- "-$spid" 2>/dev/null
+    timed_out=1
+    rc=124
+  else
+    kill -TERM -- "-$spid" 2>/dev/null # whatever the scenario left running
+  fi
+  for _ in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do # up to 2 s for it to end
+    kill -0 -- "-$spid" 2>/dev/null || break
+    sleep 0.1
+  done
+  kill -KILL -- "-$spid" 2>/dev/null
+  spid=
   ip link del vcan0
+  trap - INT TERM HUP
+  [ -z "$timed_out" ] || report_timeout "$trace"
   exit $rc
 fi
 
 echo "harness: no vcan on this kernel; booting a Debian kernel under QEMU (TCG)"
+for tool in busybox cpio qemu-system-x86_64; do
+  command -v "$tool" >/dev/null 2>&1 || { echo "harness: $tool not found (run scripts/setup.sh as root)"; exit 1; }
+done
 # The kernel: the version Debian's linux-image-amd64 depends on, unpacked once into $work.
 resolve() { apt-cache depends linux-image-amd64 2>/dev/null | awk '/Depends: linux-image-[0-9]/{print $2; exit}'; }
 kpkg=$(resolve)
@@ -44,12 +191,14 @@ fi
 vmlinuz=$(ls "$kdir"/boot/vmlinuz-* | head -1)
 mods=$(ls -d "$kdir"/lib/modules/*/kernel)
 
-# The initramfs: busybox, the four CAN modules, the binaries with their shared libraries.
+# The initramfs: busybox, the four CAN modules, the binaries with their shared libraries, the data
+# files in /tmp (the scenario's working directory).
 root="$work/root"
 rm -rf "$root"
 mkdir -p "$root"/{bin,proc,sys,dev,tmp,mods}
-cp /bin/busybox "$root/bin/"
-for a in sh mount insmod ip sleep cat echo poweroff ls grep kill pidof head tail wc sed awk date seq cut; do
+cp "$(command -v busybox)" "$root/bin/busybox"
+for a in sh mount insmod ip sleep cat echo poweroff ls grep kill pidof head tail wc sed awk date seq cut \
+         setsid; do
   ln -sf busybox "$root/bin/$a"
 done
 cp "$mods/net/can/can.ko" "$mods/net/can/can-raw.ko" "$mods/drivers/net/can/dev/can-dev.ko" \
@@ -61,7 +210,10 @@ for b in "$@" /usr/bin/cansend /usr/bin/candump; do
     cp -L "$lib" "$root$lib"
   done
 done
+for f in ${files[@]+"${files[@]}"}; do cp "$f" "$root/tmp/"; done
 cp "$scenario" "$root/scenario.sh"
+printf 'limit=%d\n' "$limit" >"$root/harness.conf"
+printf "trace_ps4='%s'\n" "$PS4_TRACE" >>"$root/harness.conf"
 cat >"$root/init" <<'INIT'
 #!/bin/sh
 mount -t proc proc /proc
@@ -69,23 +221,44 @@ mount -t sysfs sys /sys
 mount -t devtmpfs dev /dev
 for m in can can-dev can-raw vcan; do insmod /mods/$m.ko; done
 ip link add dev vcan0 type vcan && ip link set vcan0 up
+. /harness.conf
 echo "=== scenario begin"
 echo "figure: VM boot, kernel start to scenario: $(cut -d' ' -f1 /proc/uptime) s"
-cd /tmp && sh /scenario.sh
-echo "=== scenario end $?"
+cd /tmp
+# The scenario and its watchdog lead process groups of their own; the trace goes to fd 9.
+exec 3<&0
+BASH_XTRACEFD=9 PS4=$trace_ps4 setsid sh -x /scenario.sh 9>/harness.trace <&3 3<&- &
+spid=$!
+setsid sh -c "sleep $limit && : >/harness.timed-out && kill -TERM -$spid; sleep 2; kill -KILL -$spid" \
+  </dev/null >/dev/null 2>&1 &
+wpid=$!
+exec 3<&-
+wait $spid 2>/dev/null
+rc=$?
+kill -KILL -$wpid 2>/dev/null
+if [ -e /harness.timed-out ]; then
+  kill -KILL -$spid 2>/dev/null
+  echo "=== scenario end 124"
+  echo "=== trace begin"
+  tail -n 200 /harness.trace
+  echo "=== trace end"
+else
+  echo "=== scenario end $rc"
+fi
 poweroff -f
 INIT
 chmod +x "$root/init"
 (cd "$root" && find . | cpio -o -H newc 2>/dev/null | gzip >"$work/initrd.gz")
 
+# QEMU's own limit stays above the scenario's, so that a time-out inside the VM gets reported.
 t0=$(date +%s.%N)
 if [ -n "${HARNESS_LIVE:-}" ]; then
   # Live: the scenario's output as it happens (progress bars included).
-  timeout 600 qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$vmlinuz" \
+  timeout $((limit + 120)) qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$vmlinuz" \
     -initrd "$work/initrd.gz" -append "console=ttyS0 quiet panic=-1" 2>&1 | tee "$work/console.log" |
     sed -u -n '/=== scenario begin/,/=== scenario end/{/=== scenario/d;p}'
 else
-  timeout 600 qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$vmlinuz" \
+  timeout $((limit + 120)) qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$vmlinuz" \
     -initrd "$work/initrd.gz" -append "console=ttyS0 quiet panic=-1" >"$work/console.log" 2>&1
 fi
 t1=$(date +%s.%N)
@@ -93,4 +266,8 @@ t1=$(date +%s.%N)
 rc=$(sed -n 's/.*=== scenario end \([0-9]*\).*/\1/p' "$work/console.log" | tr -d '\r')
 echo "harness: VM boot to power-off $(echo "$t1 - $t0" | bc 2>/dev/null || awk "BEGIN{print $t1 - $t0}") s"
 [ -n "$rc" ] || { echo "harness: the VM did not finish the scenario"; tail -20 "$work/console.log"; exit 1; }
+if grep -q '=== trace begin' "$work/console.log"; then
+  sed -n '/=== trace begin/,/=== trace end/p' "$work/console.log" | sed '1d;$d' | tr -d '\r' >"$work/scenario.trace"
+  report_timeout "$work/scenario.trace"
+fi
 exit "$rc"
