@@ -68,18 +68,28 @@ const proto_def proto_table[PM_COUNT] = {
      "Emergency stop: stepping is cut at once and the controller latches an e-stop fault. Node 0 "
      "stops every controller on the bus."},
     {PM_STOP, 0x02, "STOP", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
-     "Controlled stop: the running motion decelerates along its path within the limits; the "
-     "trajectory queue is dropped. Node 0 stops every controller."},
+     "Controlled stop: the running motion decelerates along its path within the limits and the "
+     "trajectory queue is dropped: once at rest the queue is empty, and no further point of the "
+     "stopped trajectory is accepted. Node 0 stops every controller."},
     {PM_REJECT, 0x03, "REJECT", PROTO_TO_HOST, 8, 7,
      {{"function", PF_U8, 0, 0, 127, "", 1.0, 0, "function code of the refused message"},
       {"seq", PF_U8, 1, 0, 255, "", 1.0, 0, "its sequence number (0 when it had none)"},
       {"reason", PF_U8, 2, 0, FW_REASON_COUNT - 1, "", 1.0, proto_reason_names, "why"},
-      {"scissor", PF_U8, 3, 0, 3, "", 1.0, 0, "first failing scissor (1..3), 0 if none"},
+      {"scissor", PF_U8, 3, 0, 3, "", 1.0, 0,
+       "for kinematics, the first failing scissor (1..3); for timing, the scissor (1..3) of the slide "
+       "over its limit; 0 otherwise"},
       {"kin_status", PF_U8, 4, 0, TSE_STATUS_COUNT - 1, "", 1.0, proto_kin_status_names,
-       "kinematic status of the first failing point"},
-      {"field", PF_U8, 5, 0, 255, "", 1.0, 0, "index of the offending field, or parameter"},
-      {"where", PF_U16, 6, 0, 65535, "", 1e-3, 0,
-       "position of the first failing point along the path, 0..1000 per mille"}},
+       "for kinematics, the kinematic status of the first failing point; 0 otherwise"},
+      {"field", PF_U8, 5, 0, 255, "", 1.0, 0,
+       "for range, the index of the offending field (0 = its first, counting in byte order); for "
+       "param_unknown, param_range and param_set, the parameter id (255 for an id above 255); for "
+       "state, the controller's state when it refused (a state value as in STATUS); for timing, the "
+       "slide over its limit, 1..6 for A1, B1, A2, B2, A3, B3, plus 16 when the limit is the "
+       "acceleration rather than the speed"},
+      {"where", PF_U16, 6, 0, 65535, "per mille", 1.0, 0,
+       "for kinematics, the position of the first failing point along the path (0..1000); for "
+       "timing, the demand against the limit, per mille of the limit (1000 = at the limit, 1350 = "
+       "35 % over; capped at 65535)"}},
      "Every refused command gets one. Nothing of a refused command is applied."},
     {PM_ACK, 0x04, "ACK", PROTO_TO_HOST, 8, 5,
      {{"function", PF_U8, 0, 0, 127, "", 1.0, 0, "function code of the accepted message"},
@@ -117,8 +127,8 @@ const proto_def proto_table[PM_COUNT] = {
     {PM_MOVE_COMMIT, 0x0D, "MOVE_COMMIT", PROTO_TO_CONTROLLER, 6, 3,
      {SEQ(0),
       {"kind", PF_U8, 1, 0, 1, "", 1.0, proto_move_kind_names, "what value gives"},
-      {"value", PF_U32, 2, 1, 3600000, "", 1.0, 0,
-       "duration in ms, or plate speed in um/s"}},
+      {"value", PF_U32, 2, 1, 3600000, "ms or um/s", 1.0, 0,
+       "for kind duration, the move's duration in ms; for kind speed, the plate's speed in um/s"}},
      "Move to the staged pose of this sequence number, straight in position with the orientation "
      "interpolated. Applied only if all three parts of this sequence arrived and it is newer than "
      "the last accepted; the whole path is validated before the first step."},
@@ -135,7 +145,8 @@ const proto_def proto_table[PM_COUNT] = {
      "Set a parameter (only while disabled or in fault); range-checked, then checked with the "
      "whole set; a refused value changes nothing."},
     {PM_PARAM_SAVE, 0x11, "PARAM_SAVE", PROTO_TO_CONTROLLER, 4, 1,
-     {{"magic", PF_U32, 0, 0x45564153, 0x45564153, "", 1.0, 0, "0x45564153 (\"SAVE\")"}},
+     {{"magic", PF_U32, 0, 0x45564153, 0x45564153, "", 1.0, 0,
+       "0x45564153, the ASCII bytes S, A, V, E in wire order"}},
      "Store the parameter set in non-volatile memory."},
     {PM_STATUS, 0x20, "STATUS", PROTO_TO_HOST, 8, 7,
      {{"state", PF_U8, 0, 0, FW_STATE_COUNT - 1, "", 1.0, proto_state_names, "controller state"},

@@ -6,11 +6,11 @@ gen=$1
 src=$2
 fail=0
 if ! "$gen" markdown | diff -u "$src/docs/protocol.md" - >/dev/null; then
-  echo "FAIL: docs/protocol.md differs from the table; regenerate: protogen markdown > docs/protocol.md"
+  echo "FAIL: docs/protocol.md differs from the table; regenerate both: cmake --build <build dir> --target protocol_docs"
   fail=1
 fi
 if ! "$gen" dbc 1 | diff -u "$src/docs/tse_node1.dbc" - >/dev/null; then
-  echo "FAIL: docs/tse_node1.dbc differs from the table; regenerate: protogen dbc 1 > docs/tse_node1.dbc"
+  echo "FAIL: docs/tse_node1.dbc differs from the table; regenerate both: cmake --build <build dir> --target protocol_docs"
   fail=1
 fi
 echo "$((2 - fail * 1)) passed, $fail failed"
