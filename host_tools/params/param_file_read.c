@@ -1,0 +1,146 @@
+/* Reading a parameter text file (param_text.h): every line is judged before anything is adopted. */
+#define _POSIX_C_SOURCE 200809L
+#include <ctype.h>
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "param_text_internal.h"
+
+/* Far beyond any parameter file (every parameter with its comments is a few kilobytes): a
+ * bigger file is something else. */
+#define MAX_BYTES (256 * 1024)
+
+typedef struct {
+    const char *path;
+    fw_param_set next;
+    int line[FP_COUNT];        /* where each parameter was set (0: not in the file) */
+    const char *key[FP_COUNT]; /* and how it was spelled there */
+    char *err;
+    size_t errlen;
+} reading;
+
+static char *trim(char *s)
+{
+    while (isspace((unsigned char)*s))
+        ++s;
+    char *e = s + strlen(s);
+    while (e > s && isspace((unsigned char)e[-1]))
+        *--e = '\0';
+    return s;
+}
+
+/* The whole file in a NUL-terminated buffer (the caller frees it), or NULL with the reason. */
+static char *slurp(reading *r)
+{
+    FILE *f = fopen(r->path, "rb");
+    if (!f) {
+        snprintf(r->err, r->errlen, "%s: cannot open: %s", r->path, strerror(errno));
+        return NULL;
+    }
+    char *text = malloc(MAX_BYTES + 1);
+    const size_t n = text ? fread(text, 1, MAX_BYTES + 1, f) : 0;
+    const int read_errno = errno;
+    const int failed = ferror(f);
+    fclose(f);
+    const char *why = !text ? "out of memory"
+                      : failed ? strerror(read_errno)
+                      : n > MAX_BYTES ? "larger than 256 KiB: not a parameter text file"
+                      : memchr(text, '\0', n) ? "contains a NUL byte: not a parameter text file (an old binary record?)"
+                                              : NULL;
+    if (why) {
+        snprintf(r->err, r->errlen, "%s: %s", r->path, why);
+        free(text);
+        return NULL;
+    }
+    text[n] = '\0';
+    return text;
+}
+
+/* One line, comment and blanks included; 0, or -1 with "PATH:LINE: ..." in err. */
+static int take_line(reading *r, char *line, int lineno)
+{
+    char *hash = strchr(line, '#');
+    if (hash)
+        *hash = '\0';
+    line = trim(line);
+    if (!*line)
+        return 0;
+    char *eq = strchr(line, '=');
+    if (!eq) {
+        snprintf(r->err, r->errlen, "%s:%d: expected 'name = value', got '%.40s'", r->path, lineno, line);
+        return -1;
+    }
+    *eq = '\0';
+    const char *name = trim(line), *value = trim(eq + 1);
+    param_key k;
+    if (!*name) {
+        snprintf(r->err, r->errlen, "%s:%d: no parameter name before '='", r->path, lineno);
+        return -1;
+    }
+    if (param_lookup(name, &k) != 0) {
+        snprintf(r->err, r->errlen, "%s:%d: unknown parameter '%.40s'", r->path, lineno, name);
+        return -1;
+    }
+    if (r->line[k.id]) {
+        snprintf(r->err, r->errlen, "%s:%d: %s given twice (first on line %d as %s)", r->path, lineno, name,
+                 r->line[k.id], r->key[k.id]);
+        return -1;
+    }
+    char why[200];
+    if (param_from_text(&k, value, &r->next.v[k.id], why, sizeof why) != 0) {
+        snprintf(r->err, r->errlen, "%s:%d: %s", r->path, lineno, why);
+        return -1;
+    }
+    r->line[k.id] = lineno;
+    r->key[k.id] = name;
+    return 0;
+}
+
+/* The whole set, judged as the firmware judges it. */
+static int take_set(reading *r, const fw_param_set *before)
+{
+    const int bad = fw_params_check(&r->next);
+    if (bad < 0)
+        return 0;
+    char why[400];
+    param_explain_invalid(&r->next, why, sizeof why);
+    if (r->line[bad])
+        snprintf(r->err, r->errlen, "%s:%d: %s", r->path, r->line[bad], why);
+    else
+        snprintf(r->err, r->errlen, "%s: %s (%s is not set in the file: its %s is what is in conflict)", r->path,
+                 why, fw_param_table[bad].name,
+                 before->v[bad] == fw_param_table[bad].def ? "default" : "value before reading");
+    return -1;
+}
+
+int param_file_read(const char *path, fw_param_set *s, char *err, size_t errlen)
+{
+    reading r;
+    memset(&r, 0, sizeof r);
+    r.path = path;
+    r.next = *s;
+    r.err = err;
+    r.errlen = errlen;
+    char *text = slurp(&r);
+    if (!text)
+        return -1;
+    char *cur = text;
+    if (!strncmp(cur, "\xEF\xBB\xBF", 3))
+        cur += 3;
+    int rc = 0;
+    for (int lineno = 1; rc == 0 && *cur; ++lineno) {
+        char *nl = strchr(cur, '\n');
+        if (nl)
+            *nl = '\0';
+        rc = take_line(&r, cur, lineno);
+        cur = nl ? nl + 1 : cur + strlen(cur);
+    }
+    if (rc == 0)
+        rc = take_set(&r, s);
+    if (rc == 0)
+        *s = r.next;
+    free(text);
+    return rc;
+}

@@ -1,0 +1,65 @@
+/* The controller's parameters as people read and write them: SI text over the integer wire.
+ *
+ * The CAN wire and fw_param_table keep micro-units (um, urad, ppm, um/s, ...).  Here a name
+ * without a unit suffix is SI: m, rad, m/s, m/s^2, m/s^3, rad/s, rad/s^2, a plain ratio for ppm,
+ * 1/m, 1/s; names that carry their unit keep it (watchdog_ms in ms, step_pulse_ns in ns,
+ * can_kbps in kbit/s).  Angles (the urad parameters eta, alpha_min, alpha_max) may also be
+ * spelled NAME_deg, in degrees.  Nothing here changes a range: the table's integer limits are the
+ * truth, shown in the unit of the spelling used.
+ *
+ * Host only (it uses stdio and the heap); the firmware never sees text. */
+#ifndef PARAM_TEXT_H
+#define PARAM_TEXT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fw/params.h"
+
+typedef struct {
+    int id;          /* fw_param_id */
+    double per_unit; /* how many raw integer units one unit of this spelling is (1e6 for "m" of an
+                      * "um" parameter, 1e6*pi/180 for "deg" of a "urad" one, 1 for "ms") */
+    const char *unit;/* the unit of this spelling ("m", "rad", "deg", "m/s", "" for a ratio, "ms") */
+} param_key;
+
+/* Looks a name up, case-insensitively: a table name (SI) or an angle's name + "_deg".
+ * Returns 0, or -1 for an unknown name (k untouched). */
+int param_lookup(const char *name, param_key *k);
+
+/* The SI spelling of parameter id (table name, SI unit). */
+void param_si_key(int id, param_key *k);
+
+/* Converts the text of a value in k's unit into the wire integer, rounding to the nearest
+ * integer (halves away from zero); surrounding blanks are allowed.  Refuses (returns -1, *raw
+ * untouched) text that is not one finite number, or a value outside the table's range (or a
+ * can_kbps other than the four rates), with a message naming the parameter, the value, the unit
+ * and the range in k's unit, e.g. "slide_vmax = 3 m/s is outside 0.001..2 m/s". */
+int param_from_text(const param_key *k, const char *text, int32_t *raw, char *err, size_t errlen);
+
+/* Writes raw in k's unit, exactly where the integer allows ("0.15" for 150000 um/s, "1.727" for
+ * 1727000 um); in a unit that is not a power of ten of the raw one (degrees), the fewest digits
+ * that param_from_text turns back into raw.  Returns buf. */
+const char *param_to_text(const param_key *k, int32_t raw, char *buf, size_t cap);
+
+/* Explains why fw_params_check refuses set s, in words with the rule and the values in SI, e.g.
+ * "alpha_min = 1.3 rad must be below alpha_max = 1.2 rad" or "home_sw_3 = 0.05 m: the six
+ * homing switches cannot be reached together (...)".  For a set it accepts, says so. */
+void param_explain_invalid(const fw_param_set *s, char *err, size_t errlen);
+
+/* Parameter text files: `key = value` lines, '#' comments (also after a value), blank lines, CRLF,
+ * an optional UTF-8 BOM; keys as param_lookup takes them; missing keys keep *s's value (start from
+ * fw_params_default for a fresh set).  A line that is not `key = value`, a key given twice (also
+ * under its other spelling), an unknown key, a bad value, or a whole set that fw_params_check
+ * refuses is an error "PATH:LINE: ..." (for the set, the line of the key fw_params_check blames;
+ * when the file does not set that key, the message says its kept value is what is in conflict).
+ * An unreadable file is "PATH: ...".  Returns 0, or -1 with *s unchanged. */
+int param_file_read(const char *path, fw_param_set *s, char *err, size_t errlen);
+
+/* Writes every parameter in SI, each after a comment with its doc, unit, range and default, to
+ * PATH.tmp, fsyncs it and renames it over PATH: never a half-written file.  A set that
+ * fw_params_check refuses is not written (param_file_read would refuse the file).  Returns 0, or
+ * -1 with err (PATH untouched). */
+int param_file_write(const char *path, const fw_param_set *s, char *err, size_t errlen);
+
+#endif

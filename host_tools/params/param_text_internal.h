@@ -1,0 +1,18 @@
+/* What the parts of the parameter text library share: the words of a value and of a range. */
+#ifndef PARAM_TEXT_INTERNAL_H
+#define PARAM_TEXT_INTERNAL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "param_text.h"
+
+/* "0.15 m/s", "0.2647" (a ratio has no unit), "30 deg". */
+const char *param_value_words(const param_key *k, int32_t raw, char *buf, size_t cap);
+
+/* Why a value (raw, the wire integer it came to, or beyond int32) that fw_param_value_ok refuses
+ * is refused, in k's unit: "NAME = SHOWN UNIT is outside MIN..MAX UNIT", or, for a can_kbps
+ * inside its range, the four rates.  shown is the value as its writer gave it. */
+void param_range_error(const param_key *k, double raw, const char *shown, char *err, size_t errlen);
+
+#endif
