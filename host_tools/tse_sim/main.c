@@ -1,22 +1,29 @@
 /* tse-sim: the controller firmware on Linux SocketCAN, driving a simulated plant.
  *
  *   tse-sim --iface vcan0 --node N [--params FILE] [--start S]
+ *   tse-sim --write-params FILE
  *
  * The firmware runs unchanged on hal/posix: a 1 kHz control tick from timerfd, each followed by
  * its 200 step interrupts against the plant (whose clock is the step count, so the simulated
  * physics is exact whatever the scheduler does).  State changes, faults and plant breaches are
- * logged on stdout; SIGINT or SIGTERM stops it cleanly. */
+ * logged on stdout; SIGINT or SIGTERM stops it cleanly.  The parameter file is the SI text of
+ * host_tools/params (param_store.h): one it cannot read or the controller refuses stops it before
+ * it starts (exit 2), and is never written. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 #include "fw/controller.h"
 #include "hal_posix/plant.h"
 #include "hal_posix/posix_hal.h"
+#include "estop_watch.h"
+#include "param_store.h"
+#include "param_text.h"
 
 #define CONTROL_HZ 1000u
 #define STEP_HZ 200000u
@@ -37,7 +44,7 @@ typedef struct {
     uint32_t reported;
     bool awaiting_first_step;
     uint64_t accepted_tick;   /* plant tick at which motion was accepted */
-    uint64_t estop_tick;      /* plant tick at which the e-stop was taken (0: none) */
+    estop_watch estop;        /* which steps came while an e-stop held */
 } sim;
 
 
@@ -68,10 +75,9 @@ static void control(void *arg)
                (double)(s->plant.first_after_mark - s->accepted_tick) * 1e3 / STEP_HZ);
         s->awaiting_first_step = false;
     }
-    if (s->estop_tick && s->plant.last_pulse_tick > s->estop_tick) {
-        printf("tse-sim: a step %.3f ms after the e-stop\n", (double)(s->plant.last_pulse_tick - s->estop_tick) * 1e3 / STEP_HZ);
-        s->estop_tick = s->plant.last_pulse_tick;
-    }
+    uint64_t after;
+    if (s->plant.pulses && estop_watch_pulse(&s->estop, s->plant.last_pulse_tick, &after))
+        printf("tse-sim: a step %.3f ms after the e-stop\n", (double)after * 1e3 / STEP_HZ);
     if (s->fw.state != s->last_state || s->fw.fault != s->last_fault) {
         if (s->fw.state == FW_STATE_MOVING || s->fw.state == FW_STATE_HOMING) {
             s->awaiting_first_step = true;
@@ -79,8 +85,10 @@ static void control(void *arg)
             plant_mark(&s->plant);
             printf("tse-sim: motion accepted at t = %.3f s\n", (double)s->plant.tick / STEP_HZ);
         }
+        if (s->last_state == FW_STATE_ESTOP && s->fw.state != FW_STATE_ESTOP)
+            estop_watch_cleared(&s->estop, s->plant.tick);
         if (s->fw.state == FW_STATE_ESTOP && s->last_state != FW_STATE_ESTOP) {
-            s->estop_tick = s->plant.tick;
+            estop_watch_taken(&s->estop, s->plant.tick);
             printf("tse-sim: e-stop taken; the last step was %.3f ms before it\n",
                    (double)(s->plant.tick - s->plant.last_pulse_tick) * 1e3 / STEP_HZ);
         }
@@ -103,16 +111,46 @@ static void step(void *arg)
 
 static int usage(const char *why)
 {
-    fprintf(stderr, "tse-sim: %s\nusage: tse-sim --iface IFACE --node N [--params FILE] [--start S]\n"
-                    "  --params FILE  where the controller keeps its parameters (PARAM_SAVE)\n"
-                    "  --start S      slide positions at power-up [m] (default 0.05: below the homing\n"
-                    "                 switches at 0.2 m, so homing first leaves them)\n", why);
+    fprintf(stderr,
+            "tse-sim: %s\n"
+            "usage: tse-sim --iface IFACE --node N [--params FILE] [--start S]\n"
+            "       tse-sim --write-params FILE\n"
+            "  --params FILE        the controller's parameters, as 'name = value' text in SI units\n"
+            "                       (m, rad, m/s, ...; or as the name says: _ms, _ns, _kbps, _deg);\n"
+            "                       names left out keep their defaults; a file that cannot be read\n"
+            "                       or holds a refused value or set stops tse-sim before it starts\n"
+            "                       (exit 2, naming the line).  A missing FILE means the defaults;\n"
+            "                       PARAM_SAVE writes the whole set to it\n"
+            "  --write-params FILE  write the defaults, one commented line per parameter, to FILE\n"
+            "                       as a template and exit (refused if FILE exists)\n"
+            "  --start S            slide positions at power-up [m] (default 0.05: below the homing\n"
+            "                       switches at 0.2 m, so homing first leaves them)\n",
+            why);
     return 2;
+}
+
+/* --write-params: the defaults as a template, never over an existing file. */
+static int write_template(const char *path)
+{
+    struct stat sb;
+    if (stat(path, &sb) == 0) {
+        fprintf(stderr, "tse-sim: %s exists: not overwritten\n", path);
+        return 2;
+    }
+    fw_param_set d;
+    fw_params_default(&d);
+    char err[768];
+    if (param_file_write(path, &d, err, sizeof err) != 0) {
+        fprintf(stderr, "tse-sim: %s\n", err);
+        return 2;
+    }
+    printf("tse-sim: wrote the default parameters to %s\n", path);
+    return 0;
 }
 
 int main(int argc, char **argv)
 {
-    const char *iface = NULL, *params = NULL;
+    const char *iface = NULL, *params = NULL, *write_params = NULL;
     long node = -1;
     double start = 0.05;
     for (int i = 1; i < argc; ++i) {
@@ -129,6 +167,8 @@ int main(int argc, char **argv)
                 return usage("--node takes 1..15");
         } else if (!strcmp(argv[i], "--params") && v) {
             params = argv[++i];
+        } else if (!strcmp(argv[i], "--write-params") && v) {
+            write_params = argv[++i];
         } else if (!strcmp(argv[i], "--start") && v) {
             start = strtod(argv[++i], &end);
             if (*end || !(start > -0.01 && start < 0.91))
@@ -138,25 +178,45 @@ int main(int argc, char **argv)
             return usage("bad arguments");
         }
     }
+    if (write_params)
+        return write_template(write_params);
     if (!iface || node < 0)
         return usage("--iface and --node are needed");
 
     static sim s;
-    static posix_can can;
-    if (posix_can_open(&can, iface, (uint8_t)node) != 0) {
-        fprintf(stderr, "tse-sim: cannot open CAN interface %s: %s\n", iface, strerror(errno));
-        return 1;
+    static sim_param_store store;
+    char err[768];
+    if (sim_param_store_open(&store, params, stderr, err, sizeof err) != 0) {
+        fprintf(stderr, "tse-sim: %s\n", err);
+        return 2;
     }
-    posix_storage storage = {params};
+    /* The controller starts before the bus opens (fw_init sends nothing), so that a parameter
+     * file it cannot adopt is refused like any other bad file, whatever the bus. */
+    static posix_can can = {.fd = -1};
     fw_hal hal;
     hal.can = posix_can_hal(&can);
     hal.stepper = plant_stepper(&s.plant);
     hal.inputs = plant_inputs(&s.plant);
     hal.clock = posix_clock_hal();
-    hal.storage = posix_storage_hal(&storage);
+    hal.storage = sim_param_store_hal(&store);
     const fw_config cfg = {(uint8_t)node, CONTROL_HZ, STEP_HZ, false};
     if (fw_init(&s.fw, &hal, &cfg) != 0) {
         fprintf(stderr, "tse-sim: the controller did not start\n");
+        return 1;
+    }
+    /* fw_init falls back to the defaults when it cannot adopt the stored set: what depends on the
+     * controller's rates (the STEP pulse and DIR set-up against the step interrupts) is judged
+     * only there.  The file asked for this set: running with another would mislead. */
+    if (store.stored && memcmp(&s.fw.params, &store.set, sizeof store.set) != 0) {
+        fprintf(stderr,
+                "tse-sim: %s: the controller cannot adopt this set at its %u Hz step interrupts (step_pulse_ns "
+                "must end within one and leave as long low before the next step at step_rate_max; dir_setup_ns "
+                "must leave room for a step within a %u Hz control period)\n",
+                params, STEP_HZ, CONTROL_HZ);
+        return 2;
+    }
+    if (posix_can_open(&can, iface, (uint8_t)node) != 0) {
+        fprintf(stderr, "tse-sim: cannot open CAN interface %s: %s\n", iface, strerror(errno));
         return 1;
     }
     /* The plant follows the controller's parameters (stroke, steps per metre, limits, where the
@@ -170,6 +230,7 @@ int main(int argc, char **argv)
         pc.home_sw[k] = (double)fp->v[FP_HOME_SW_1 + k] * 1e-6;
     plant_init(&s.plant, &pc, &s.fw.geom, starts);
     s.last_state = FW_STATE_BOOT;
+    estop_watch_init(&s.estop);
 
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);

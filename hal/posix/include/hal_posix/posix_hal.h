@@ -1,4 +1,5 @@
-/* hal/ on Linux: SocketCAN, the monotonic clock, a parameter file, and a timerfd ticker. */
+/* hal/ on Linux: SocketCAN, the monotonic clock, and a timerfd ticker.  (Parameter storage is the
+ * simulator's own: host_tools/tse_sim/param_store.h keeps the parameters as a text file.) */
 #ifndef HAL_POSIX_H
 #define HAL_POSIX_H
 
@@ -6,7 +7,6 @@
 
 #include "hal/can.h"
 #include "hal/clock.h"
-#include "hal/storage.h"
 #include "hal/ticker.h"
 
 typedef struct {
@@ -23,11 +23,6 @@ void posix_can_close(posix_can *c);
 hal_can posix_can_hal(posix_can *c);
 
 hal_clock posix_clock_hal(void);
-
-typedef struct {
-    const char *path; /* NULL: nothing is stored */
-} posix_storage;
-hal_storage posix_storage_hal(posix_storage *s);
 
 typedef struct {
     volatile int stop;

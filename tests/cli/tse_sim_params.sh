@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# tse-sim's parameter file, without a bus: a bad file stops it before it starts (exit 2, naming
+# the file and line) and is left byte for byte as it was; --write-params writes a template that
+# tse-sim then takes, and never overwrites a file.  (No CAN here: a good file gets tse-sim as far
+# as opening the interface, which then fails with exit 1.)
+set -u
+T=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+fail=0
+check() { local name=$1; shift; if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $name"; fi; }
+
+"$T" --help 2>"$tmp/usage"; check "--help exits 0" test $? -eq 0
+check "usage names --params" grep -q -- "--params FILE" "$tmp/usage"
+check "usage names --write-params" grep -q -- "--write-params FILE" "$tmp/usage"
+
+printf '# mine\nslide_vmax = 0.2\n\nslide_amax = 3 # m/s^2\nwatchdog_ms = soon\n' >"$tmp/bad.params"
+cp "$tmp/bad.params" "$tmp/bad.orig"
+"$T" --iface nosuchcan0 --node 1 --params "$tmp/bad.params" >"$tmp/out" 2>"$tmp/err"; rc=$?
+check "a bad value exits 2" test $rc -eq 2
+check "the bad value's file and line are named" grep -q "bad.params:5: watchdog_ms: 'soon' is not one finite number (in ms)" "$tmp/err"
+check "the bad file is unchanged" cmp -s "$tmp/bad.params" "$tmp/bad.orig"
+check "no temporary is left" test ! -e "$tmp/bad.params.tmp"
+
+printf 'alpha_min_deg = 80\nalpha_max_deg = 70\n' >"$tmp/set.params"
+cp "$tmp/set.params" "$tmp/set.orig"
+"$T" --iface nosuchcan0 --node 1 --params "$tmp/set.params" >"$tmp/out" 2>"$tmp/err"; rc=$?
+check "a refused set exits 2" test $rc -eq 2
+check "the refused set names its line and rule" grep -q "set.params:2: alpha_min = 1.396263 rad must be below alpha_max = 1.22173 rad" "$tmp/err"
+check "the refused set's file is unchanged" cmp -s "$tmp/set.params" "$tmp/set.orig"
+
+# In range, but a 6 us STEP pulse does not fit the simulator's 5 us step interrupts.
+printf 'step_pulse_ns = 6000\n' >"$tmp/pulse.params"
+cp "$tmp/pulse.params" "$tmp/pulse.orig"
+"$T" --iface nosuchcan0 --node 1 --params "$tmp/pulse.params" >"$tmp/out" 2>"$tmp/err"; rc=$?
+check "a set the controller cannot adopt exits 2" test $rc -eq 2
+check "it says so" grep -q "pulse.params: the controller cannot adopt this set at its 200000 Hz step interrupts" "$tmp/err"
+check "that file is unchanged" cmp -s "$tmp/pulse.params" "$tmp/pulse.orig"
+
+printf 'PEST\x22\x00\x01\x02' >"$tmp/binary.params"
+cp "$tmp/binary.params" "$tmp/binary.orig"
+"$T" --iface nosuchcan0 --node 1 --params "$tmp/binary.params" >"$tmp/out" 2>"$tmp/err"; rc=$?
+check "an old binary record exits 2" test $rc -eq 2
+check "the binary file is called what it is" grep -q "binary.params: contains a NUL byte" "$tmp/err"
+check "the binary file is unchanged" cmp -s "$tmp/binary.params" "$tmp/binary.orig"
+
+"$T" --write-params "$tmp/t.params" >"$tmp/out" 2>"$tmp/err"; rc=$?
+check "--write-params exits 0" test $rc -eq 0
+check "the template holds every parameter in SI" grep -qx "slide_vmax = 0.15" "$tmp/t.params"
+check "the template says units and ranges" grep -qx "# in m/s, 0.001..2, default 0.15" "$tmp/t.params"
+cp "$tmp/t.params" "$tmp/t.orig"
+"$T" --write-params "$tmp/t.params" >"$tmp/out" 2>"$tmp/err"; rc=$?
+check "--write-params over an existing file exits 2" test $rc -eq 2
+check "it says why" grep -q "t.params exists: not overwritten" "$tmp/err"
+check "the existing file is unchanged" cmp -s "$tmp/t.params" "$tmp/t.orig"
+
+"$T" --iface nosuchcan0 --node 1 --params "$tmp/t.params" >"$tmp/out" 2>"$tmp/err"; rc=$?
+check "the template is taken (then no CAN: exit 1)" test $rc -eq 1
+check "it got as far as the interface" grep -q "cannot open CAN interface nosuchcan0" "$tmp/err"
+"$T" --iface nosuchcan0 --node 1 --params "$tmp/missing.params" >"$tmp/out" 2>"$tmp/err"; rc=$?
+check "a missing file is the defaults (then no CAN: exit 1)" test $rc -eq 1
+check "a missing file is not created at start" test ! -e "$tmp/missing.params"
+
+echo "$pass passed, $fail failed"
+test $fail -eq 0
