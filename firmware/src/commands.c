@@ -4,6 +4,8 @@
 
 #include <string.h>
 
+#include "fw/reject.h"
+
 #define A FW_REASON_NONE
 #define S FW_REASON_STATE
 
@@ -60,17 +62,10 @@ void fw_ack(fw_controller *c, uint8_t function, uint8_t seq, uint32_t detail)
 void fw_reject(fw_controller *c, uint8_t function, uint8_t seq, fw_reason reason, uint8_t field,
                const fw_plan_result *why)
 {
-    int32_t where = 0, scissor = 0, status = 0;
-    if (why && why->reason == FW_REASON_KINEMATICS) {
-        scissor = why->scissor;
-        status = why->status;
-        where = (int32_t)(why->where * TSE_R(1000.0) + TSE_R(0.5));
-        if (where > 1000)
-            where = 1000;
-        if (where < 0)
-            where = 0;
-    }
-    const int32_t v[7] = {function & 0x7F, seq, reason, scissor, status, field, where};
+    if (reason == FW_REASON_STATE)
+        field = (uint8_t)c->state; /* whichever check refused, the host learns the state it refused in */
+    int32_t v[PROTO_MAX_FIELDS];
+    fw_reject_values(function, seq, reason, field, why, v);
     fw_send(c, PM_REJECT, v);
 }
 
@@ -285,6 +280,7 @@ void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
         break;
     case PM_CLEAR_FAULT:
         if (c->hal.inputs.estop(c->hal.inputs.ctx)) {
+            /* The input still open: it would latch again at once.  The reject says the state. */
             fw_reject(c, function, seq, FW_REASON_STATE, 0, NULL);
             return;
         }

@@ -130,6 +130,7 @@ void fw_estop(fw_controller *c)
     c->home.active = false;
     c->homed = false; /* steps may have been lost under the abrupt stop: home again */
     c->pose_known = false;
+    fw_traj_drop(&c->traj);
     c->fault = FW_FAULT_ESTOP;
     c->pending_fault = FW_FAULT_NONE;
     fw_set_state(c, FW_STATE_ESTOP);
@@ -158,6 +159,7 @@ static void latch_fault(fw_controller *c, fw_fault f)
     c->has_next = false;
     c->stopping = false;
     c->home.active = false;
+    fw_traj_drop(&c->traj);
     fw_drives(c, false);
     fw_set_state(c, FW_STATE_FAULT);
 }
@@ -187,7 +189,12 @@ void fw_stop_motion(fw_controller *c)
         if (c->src == FW_SRC_NONE)
             return;
     }
-    if (c->src == FW_SRC_NONE || c->stopping)
+    if (c->src == FW_SRC_NONE) {
+        /* Nothing runs along the queue any more (at rest, or the last setpoints stepping out). */
+        fw_traj_drop(&c->traj);
+        return;
+    }
+    if (c->stopping)
         return;
     fw_set_state(c, FW_STATE_STOPPING);
     if (c->src == FW_SRC_MOVE && !c->has_next && c->tau >= c->move.prof.T - c->move.prof.Ta) {
@@ -428,7 +435,9 @@ void fw_control_tick(fw_controller *c)
         return;
     }
     if (c->state == FW_STATE_MOVING || c->state == FW_STATE_STOPPING) {
+        /* At rest: what a stop ramp left of the trajectory is not for running any more. */
         c->stopping = false;
+        fw_traj_drop(&c->traj);
         if (c->pending_fault != FW_FAULT_NONE)
             latch_fault(c, c->pending_fault);
         else

@@ -35,12 +35,31 @@ static tse_real min_pos(tse_real a, tse_real b)
     return a < b ? a : b;
 }
 
+void fw_plan_clear(fw_plan_result *res)
+{
+    res->reason = FW_REASON_NONE;
+    res->status = TSE_OK;
+    res->scissor = 0;
+    res->segment = 0;
+    res->where = TSE_R(0.0);
+    res->slide = 0;
+    res->accel = false;
+    res->ratio = TSE_R(0.0);
+}
+
+void fw_plan_timing(fw_plan_result *res, fw_slide_worst w, tse_real scale)
+{
+    res->reason = FW_REASON_TIMING;
+    res->slide = (uint8_t)(w.slide + 1u);
+    res->scissor = w.slide / 2 + 1; /* A_i and B_i are slides 2i - 1 and 2i */
+    res->accel = w.accel;
+    res->ratio = w.ratio * scale;
+}
+
 /* Walks the path as execution will.  Returns 0 with the worst speed and acceleration ratios to
- * the slide limits, or -1 with the first failing point in *res. */
-/* Walks the path as execution will.  Returns 0 with the worst speed and acceleration ratios to
- * the slide limits, or -1 with the first failing point in *res. */
-static int walk(fw_move *mv, const tse_geometry *g, const fw_limits *lim,
-                const tse_real q_from[6], tse_real *v_ratio, tse_real *a_ratio, fw_plan_result *res)
+ * the slide limits and the worse of the two, or -1 with the first failing point in *res. */
+static int walk(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const tse_real q_from[6],
+                tse_real *v_ratio, tse_real *a_ratio, fw_slide_worst *worst, fw_plan_result *res)
 {
     fw_slide_check chk;
     fw_slide_check_start(&chk, lim->slide_vmax, lim->slide_amax, lim->segment_hz, q_from);
@@ -66,6 +85,7 @@ static int walk(fw_move *mv, const tse_geometry *g, const fw_limits *lim,
     fw_slide_check_finish(&chk);
     *v_ratio = chk.v_ratio;
     *a_ratio = chk.a_ratio;
+    *worst = fw_slide_check_worst(&chk);
     for (int k = 0; k < 6; ++k)
         mv->q_end[k] = chk.q[k];
     return 0;
@@ -75,11 +95,7 @@ int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const
                  const tse_real to[6], fw_move_kind kind, tse_real value, const tse_real q_from[6],
                  fw_plan_result *res)
 {
-    res->reason = FW_REASON_NONE;
-    res->status = TSE_OK;
-    res->scissor = 0;
-    res->segment = 0;
-    res->where = TSE_R(0.0);
+    fw_plan_clear(res);
     for (int k = 0; k < 6; ++k) {
         if (!isfinite(from[k]) || !isfinite(to[k]) || !isfinite(q_from[k])) {
             res->reason = FW_REASON_RANGE;
@@ -132,11 +148,12 @@ int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const
     fw_limits margin = *lim;
     margin.slide_vmax *= LIMIT_MARGIN;
     margin.slide_amax *= LIMIT_MARGIN;
+    fw_slide_worst worst = {0, false, TSE_R(0.0)};
     for (int round = 0; round < MAX_STRETCH_ROUNDS; ++round) {
         const tse_real segs = tse_ceil(mv->prof.T * lim->segment_hz);
         mv->segments = segs < TSE_R(1.0) ? 1u : (uint32_t)segs;
         tse_real vr, ar;
-        if (walk(mv, g, &margin, q_from, &vr, &ar, res) != 0)
+        if (walk(mv, g, &margin, q_from, &vr, &ar, &worst, res) != 0)
             return -1;
         /* Speeds scale with 1/k and accelerations with 1/k^2 under a time stretch by k. */
         tse_real k = vr;
@@ -150,8 +167,9 @@ int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const
         fw_profile_stretch(&mv->prof, k);
         mv->stretch *= k;
     }
-    /* Still too fast after every round: refuse rather than exceed a limit. */
-    res->reason = FW_REASON_TIMING;
+    /* Still too fast after every round: refuse rather than exceed a limit, naming the last
+     * walk's worst slide. */
+    fw_plan_timing(res, worst, LIMIT_MARGIN);
     return -1;
 }
 
@@ -215,7 +233,7 @@ int fw_move_blend(const fw_move *a, const fw_move *b, const tse_geometry *g, con
         t_prev = t;
     }
     fw_slide_check_finish(&chk);
-    if (chk.v_ratio > TSE_R(1.0) || chk.a_ratio > TSE_R(1.0))
+    if (!fw_slide_check_ok(&chk))
         return 1;
     *k0 = k;
     return 0;

@@ -14,6 +14,8 @@ void fw_slide_check_start(fw_slide_check *c, tse_real vmax, tse_real amax, tse_r
     c->n = 0;
     c->v_ratio = TSE_R(0.0);
     c->a_ratio = TSE_R(0.0);
+    c->v_slide = 0;
+    c->a_slide = 0;
 }
 
 static void push(fw_slide_check *c, const tse_real q[6])
@@ -26,8 +28,10 @@ static void push(fw_slide_check *c, const tse_real q[6])
     for (int k = 0; k < 6; ++k) {
         const tse_real a = (q[k] - TSE_R(2.0) * old1[k] + old2[k]) / (span * span);
         const tse_real ar = tse_fabs(a) / c->amax;
-        if (ar > c->a_ratio)
+        if (ar > c->a_ratio) {
             c->a_ratio = ar;
+            c->a_slide = (uint8_t)k;
+        }
         old2[k] = q[k];
     }
     ++c->n;
@@ -38,8 +42,10 @@ void fw_slide_check_feed(fw_slide_check *c, const tse_real q[6], tse_real dt)
     for (int k = 0; k < 6; ++k) {
         const tse_real v = dt > TSE_R(0.0) ? (q[k] - c->q[k]) / dt : TSE_R(0.0);
         const tse_real vr = tse_fabs(v) / c->vmax;
-        if (vr > c->v_ratio)
+        if (vr > c->v_ratio) {
             c->v_ratio = vr;
+            c->v_slide = (uint8_t)k;
+        }
         c->q[k] = q[k];
     }
     push(c, q);
@@ -52,4 +58,18 @@ void fw_slide_check_finish(fw_slide_check *c)
         rest[k] = c->q[k];
     for (uint32_t j = 0; j < 2 * FW_ACC_STRIDE; ++j)
         push(c, rest);
+}
+
+bool fw_slide_check_ok(const fw_slide_check *c)
+{
+    return !(c->v_ratio > TSE_R(1.0) || c->a_ratio > TSE_R(1.0));
+}
+
+fw_slide_worst fw_slide_check_worst(const fw_slide_check *c)
+{
+    fw_slide_worst w;
+    w.accel = c->a_ratio > c->v_ratio;
+    w.slide = w.accel ? c->a_slide : c->v_slide;
+    w.ratio = w.accel ? c->a_ratio : c->v_ratio;
+    return w;
 }

@@ -50,11 +50,7 @@ static void interpolate(const fw_traj_point *a, const fw_traj_point *b, uint64_t
 int fw_traj_push(fw_traj *t, const tse_geometry *g, const fw_limits *lim, const tse_real pose[6],
                  uint32_t dt_us, bool last, fw_plan_result *res)
 {
-    res->reason = FW_REASON_NONE;
-    res->status = TSE_OK;
-    res->scissor = 0;
-    res->segment = 0;
-    res->where = TSE_R(0.0);
+    fw_plan_clear(res);
     if (t->closed) {
         res->reason = FW_REASON_STATE;
         return -1;
@@ -111,8 +107,8 @@ int fw_traj_push(fw_traj *t, const tse_geometry *g, const fw_limits *lim, const 
     }
     if (last)
         fw_slide_check_finish(&chk);
-    if (chk.v_ratio > TSE_R(1.0) || chk.a_ratio > TSE_R(1.0)) {
-        res->reason = FW_REASON_TIMING;
+    if (!fw_slide_check_ok(&chk)) {
+        fw_plan_timing(res, fw_slide_check_worst(&chk), TSE_R(1.0));
         return -1;
     }
 
@@ -140,6 +136,13 @@ bool fw_traj_pose(fw_traj *t, uint64_t tau_us, tse_real pose[6])
     }
     interpolate(&t->prev, &t->pts[t->head], tau_us, pose);
     return true;
+}
+
+void fw_traj_drop(fw_traj *t)
+{
+    t->head = 0;
+    t->count = 0;
+    t->closed = true;
 }
 
 uint64_t fw_traj_end_us(const fw_traj *t)

@@ -11,141 +11,7 @@
 
 #include <cmocka.h>
 
-#include "fake_hal.h"
-#include "fw/controller_internal.h"
-
-static fake_hal F;
-static fw_controller C;
-static uint8_t seq;
-
-static void start(void)
-{
-    fw_hal hal;
-    fake_hal_init(&F, &hal);
-    for (int k = 0; k < 6; ++k)
-        F.steps[k] = FAKE_SWITCH_AT + 3000 + 100 * k; /* just above the switches: homing is short */
-    const fw_config cfg = {1, 1000, 100000, false};
-    assert_int_equal(fw_init(&C, &hal, &cfg), 0);
-    seq = 1;
-}
-
-static void send(proto_msg m, const int32_t *v)
-{
-    fake_send_msg(&F, 1, m, v);
-}
-
-static void cmd(proto_msg m)
-{
-    const int32_t v[1] = {seq++};
-    send(m, v);
-}
-
-static void heartbeat(void)
-{
-    const int32_t v[1] = {0};
-    send(PM_HOST_HEARTBEAT, v);
-}
-
-/* Runs ms milliseconds with the host alive. */
-static void run(uint32_t ms)
-{
-    for (uint32_t t = 0; t < ms; t += 10) {
-        heartbeat();
-        fake_run(&F, &C, 10);
-    }
-}
-
-static void stage(uint8_t s, const double p[6])
-{
-    const int32_t a[3] = {s, (int32_t)lround(p[0] * 1e6), (int32_t)lround(p[1] * 1e6)};
-    const int32_t b[3] = {s, (int32_t)lround(p[2] * 1e6), (int32_t)lround(p[3] * 1e6)};
-    const int32_t c[3] = {s, (int32_t)lround(p[4] * 1e6), (int32_t)lround(p[5] * 1e6)};
-    send(PM_POSE_A, a);
-    send(PM_POSE_B, b);
-    send(PM_POSE_C, c);
-}
-
-static void move_to(const double p[6], int32_t ms)
-{
-    const uint8_t s = seq++;
-    stage(s, p);
-    const int32_t m[3] = {s, 0, ms};
-    send(PM_MOVE_COMMIT, m);
-}
-
-/* What the controller answered since tx index `from`: 'a' ack, 'r' reject, 0 nothing. */
-static char answer(unsigned from, uint8_t function, uint8_t *reason)
-{
-    for (unsigned i = from; i < F.tx_count; ++i) {
-        const hal_can_frame *f = &F.tx[i];
-        if ((f->id >> 4) == 0x04 && f->data[0] == function)
-            return 'a';
-        if ((f->id >> 4) == 0x03 && f->data[0] == function) {
-            if (reason)
-                *reason = f->data[2];
-            return 'r';
-        }
-    }
-    return 0;
-}
-
-static void home(void)
-{
-    cmd(PM_ENABLE);
-    run(20);
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    cmd(PM_HOME);
-    run(100);
-    assert_int_equal(C.state, FW_STATE_HOMING);
-    for (int i = 0; i < 200 && C.state == FW_STATE_HOMING; ++i)
-        run(100);
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_true(C.homed);
-}
-
-static const double NEAR[6] = {0.05, 0.0, 1.0, 0, 0, 0};
-
-static void reach(fw_state s)
-{
-    start();
-    switch (s) {
-    case FW_STATE_DISABLED:
-        break;
-    case FW_STATE_HOMING:
-        cmd(PM_ENABLE);
-        run(20);
-        cmd(PM_HOME);
-        run(50);
-        break;
-    case FW_STATE_IDLE:
-        home();
-        break;
-    case FW_STATE_MOVING:
-        home();
-        move_to(NEAR, 3000);
-        run(100);
-        break;
-    case FW_STATE_STOPPING:
-        home();
-        move_to(NEAR, 3000);
-        run(1000);
-        cmd(PM_STOP);
-        fw_poll(&C);
-        break;
-    case FW_STATE_FAULT:
-        cmd(PM_ENABLE);
-        run(20);
-        fake_run(&F, &C, 700); /* no heartbeat past the 500 ms watchdog */
-        break;
-    case FW_STATE_ESTOP:
-        cmd(PM_ESTOP);
-        run(20);
-        break;
-    default:
-        fail();
-    }
-    assert_int_equal(C.state, s);
-}
+#include "harness.h"
 
 /* Every command in every state, against the rules of system.md written out here. */
 static void test_state_table(void **state)
@@ -214,8 +80,11 @@ static void test_state_table(void **state)
             if ((want == '-' ? 0 : want) != got)
                 fail_msg("%s in state %d: expected %c, got %c", proto_table[rows[r].cmd].name, states[k], want,
                          got ? got : '-');
-            if (got == 'r')
+            if (got == 'r') {
                 assert_int_equal(reason, FW_REASON_STATE);
+                /* and says which state refused */
+                assert_int_equal(reject_of(from, proto_table[rows[r].cmd].function).v[5], states[k]);
+            }
         }
     }
     /* Boot accepts nothing but e-stop and parameter reads. */

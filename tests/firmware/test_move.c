@@ -1,6 +1,6 @@
 /* Move planning: validated paths stay within every slide limit when sampled independently, the
  * plate obeys the speed asked for, and a path that leaves the workspace mid-way is caught with
- * its first failing point. */
+ * its first failing point; one no stretch can slow enough is refused naming its slide. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -170,6 +170,31 @@ static void test_unreachable_target_and_bad_input(void **state)
 
 /* Two moves blended: the path stays within every slide limit when sampled independently, the
  * plate keeps moving through the junction, and it ends on the second target. */
+/* Slides that are not where the start pose puts them (B2, q index 3, 0.5 mm off): the first
+ * segment must close the gap in 1 ms whatever the duration, so no stretch helps and the move is
+ * refused for timing, naming that slide and its speed, 0.5 mm / 1 ms = 0.5 m/s, against the
+ * limit parameter 0.2 m/s: 2.5 (the move's own start is still at rest in its first millisecond).
+ * With the acceleration limit high enough not to matter. */
+static void test_timing_refusal_names_slide(void **state)
+{
+    (void)state;
+    fw_limits lim = LIM;
+    lim.slide_amax = 1000.0;
+    const double from[6] = {0, 0, 1.0, 0, 0, 0}, to[6] = {0.01, 0, 1.0, 0, 0, 0};
+    double q0[6];
+    solve(from, NULL, q0);
+    q0[3] += 0.0005;
+    fw_move mv;
+    fw_plan_result res;
+    assert_int_equal(fw_move_plan(&mv, &G, &lim, from, to, FW_MOVE_DURATION, 1.0, q0, &res), -1);
+    assert_int_equal(res.reason, FW_REASON_TIMING);
+    assert_int_equal(res.slide, 4);
+    assert_int_equal(res.scissor, 2);
+    assert_false(res.accel);
+    if (fabs(res.ratio - 2.5) > 0.02)
+        fail_msg("ratio %g, by hand 2.5", res.ratio);
+}
+
 static void test_blend(void **state)
 {
     (void)state;
@@ -240,6 +265,7 @@ int main(void)
         cmocka_unit_test(test_leaves_workspace_midway),
         cmocka_unit_test(test_unreachable_target_and_bad_input),
         cmocka_unit_test(test_blend),
+        cmocka_unit_test(test_timing_refusal_names_slide),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

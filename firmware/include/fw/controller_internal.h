@@ -6,6 +6,8 @@
 
 void fw_send(fw_controller *c, proto_msg msg, const int32_t *values);
 void fw_ack(fw_controller *c, uint8_t function, uint8_t seq, uint32_t detail);
+/* A REJECT (fw/reject.h).  `field` is what the reason names (a field index, a parameter id);
+ * FW_REASON_STATE always carries the controller's state, whatever the caller passes. */
 void fw_reject(fw_controller *c, uint8_t function, uint8_t seq, fw_reason reason, uint8_t field,
                const fw_plan_result *why);
 

@@ -5,13 +5,18 @@
  * the inverse kinematics warm-started from segment to segment exactly as execution will run it:
  * every segment reachable with both singularity margins; slide speeds within their limit (and
  * the step rate); slide accelerations within theirs.  A path that leaves the workspace is
- * rejected with its first failing point; one that is only too fast is stretched in time. */
+ * rejected with its first failing point; one that is only too fast is stretched in time.  Planning
+ * holds the slides to 95 % of their limits, for the step quantisation; a move still
+ * too fast after every stretch is refused with TIMING, its ratio against the limit parameters (so
+ * it may be from 0.95 up). */
 #ifndef FW_MOVE_H
 #define FW_MOVE_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "fw/profile.h"
+#include "fw/slide_check.h"
 #include "fw/types.h"
 #include "tse/ik.h"
 
@@ -37,13 +42,24 @@ typedef struct {
     tse_real q_end[6];  /* slides at the end, as validation solved them */
 } fw_move;
 
+/* Why a path was refused.  Fields that do not belong to the reason are 0. */
 typedef struct {
-    fw_reason reason;  /* NONE, KINEMATICS, RANGE (a bad request) */
-    tse_status status; /* kinematic status of the first failing point */
-    int scissor;
-    uint32_t segment;  /* first failing segment */
-    tse_real where;    /* its u, 0..1 */
+    fw_reason reason;  /* NONE, KINEMATICS, RANGE (a bad request), TIMING */
+    tse_status status; /* KINEMATICS: kinematic status of the first failing point */
+    int scissor;       /* KINEMATICS: its first failing scissor; TIMING: the scissor of `slide` (1..3) */
+    uint32_t segment;  /* KINEMATICS: first failing segment */
+    tse_real where;    /* KINEMATICS: its u, 0..1 */
+    uint8_t slide;     /* TIMING: the slide with the worst demand, 1..6 (A1, B1, A2, B2, A3, B3) */
+    bool accel;        /* TIMING: that demand is an acceleration (else a speed) */
+    tse_real ratio;    /* TIMING: the demand over the slide limit parameter (1: at the limit) */
 } fw_plan_result;
+
+/* A result with no reason and every field 0. */
+void fw_plan_clear(fw_plan_result *res);
+
+/* A TIMING refusal naming the worst demand w of a slide check whose limits were `scale` times the
+ * slide limit parameters (so the ratio against the parameters is scale times w's). */
+void fw_plan_timing(fw_plan_result *res, fw_slide_worst w, tse_real scale);
 
 /* Plans from pose `from` (whose slides are q_from) to `to`.  kind/value: the duration [s], or the
  * plate speed [m/s] (rotation-only moves then use the angular limit).  Returns 0 on success. */

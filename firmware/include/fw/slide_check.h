@@ -11,6 +11,7 @@
 #ifndef FW_SLIDE_CHECK_H
 #define FW_SLIDE_CHECK_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "tse/real.h"
@@ -25,7 +26,16 @@ typedef struct {
     uint32_t n;           /* setpoints fed */
     tse_real v_ratio;     /* worst |v| / vmax so far */
     tse_real a_ratio;     /* worst |a| / amax so far */
+    uint8_t v_slide;      /* the slide (q index 0..5) that set v_ratio */
+    uint8_t a_slide;      /* the slide that set a_ratio */
 } fw_slide_check;
+
+/* The worse of the two ratios, and where it came from: what a timing refusal names. */
+typedef struct {
+    uint8_t slide;        /* q index 0..5 (A1, B1, A2, B2, A3, B3) */
+    bool accel;           /* the acceleration limit, not the speed limit */
+    tse_real ratio;       /* demand / limit */
+} fw_slide_worst;
 
 void fw_slide_check_start(fw_slide_check *c, tse_real vmax, tse_real amax, tse_real segment_hz,
                           const tse_real q_start[6]);
@@ -35,5 +45,11 @@ void fw_slide_check_feed(fw_slide_check *c, const tse_real q[6], tse_real dt);
 
 /* The slides come to rest after the last setpoint. */
 void fw_slide_check_finish(fw_slide_check *c);
+
+/* Whether no ratio so far is over its limit (above 1). */
+bool fw_slide_check_ok(const fw_slide_check *c);
+
+/* The larger of the speed and acceleration ratios so far (speed on a tie), and its slide. */
+fw_slide_worst fw_slide_check_worst(const fw_slide_check *c);
 
 #endif

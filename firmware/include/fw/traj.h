@@ -40,10 +40,16 @@ typedef struct {
 void fw_traj_start(fw_traj *t, const fw_limits *lim, const tse_real pose[6], const tse_real q[6]);
 
 /* Validates and appends a point dt_us microseconds after the newest one.  Returns 0, or -1 with the
- * reason in *res (FW_REASON_QUEUE_FULL, FW_REASON_STATE after the last point,
- * FW_REASON_KINEMATICS with the first failing sample, FW_REASON_TIMING); nothing is changed then. */
+ * reason in *res (FW_REASON_QUEUE_FULL, FW_REASON_STATE after the last point or once dropped,
+ * FW_REASON_KINEMATICS with the first failing sample, FW_REASON_TIMING with the slide and limit
+ * of the worst demand, its ratio to the limit over 1); nothing is changed then. */
 int fw_traj_push(fw_traj *t, const tse_geometry *g, const fw_limits *lim, const tse_real pose[6],
                  uint32_t dt_us, bool last, fw_plan_result *res);
+
+/* Ends the trajectory where it is: every queued point is dropped and no point is accepted for it
+ * any more (fw_traj_push refuses with FW_REASON_STATE) until fw_traj_start begins the next one.
+ * For a controller at rest after a stop, fault or e-stop: nothing may run along it afterwards. */
+void fw_traj_drop(fw_traj *t);
 
 /* Pose at path time tau_us; points reached leave the queue.  Returns false when tau_us is past
  * the newest point (the pose is then that point's). */

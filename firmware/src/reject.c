@@ -1,0 +1,30 @@
+#include "fw/reject.h"
+
+void fw_reject_values(uint8_t function, uint8_t seq, fw_reason reason, uint8_t field,
+                      const fw_plan_result *why, int32_t v[PROTO_MAX_FIELDS])
+{
+    int32_t where = 0, scissor = 0, status = 0, fld = field;
+    if (why && reason == FW_REASON_KINEMATICS) {
+        scissor = why->scissor;
+        status = why->status;
+        where = (int32_t)(why->where * TSE_R(1000.0) + TSE_R(0.5));
+        if (where > 1000)
+            where = 1000;
+        if (where < 0)
+            where = 0;
+    } else if (why && reason == FW_REASON_TIMING) {
+        scissor = why->scissor;
+        fld = why->slide + (why->accel ? FW_REJECT_ACCEL : 0);
+        const tse_real pm = why->ratio * TSE_R(1000.0) + TSE_R(0.5);
+        /* Capped to the field, a NaN included: a value out of range would not encode, and the
+         * refusal would go unanswered. */
+        where = pm < TSE_R(65535.0) ? (pm > TSE_R(0.0) ? (int32_t)pm : 0) : 65535;
+    }
+    v[0] = function & 0x7F;
+    v[1] = seq;
+    v[2] = reason;
+    v[3] = scissor;
+    v[4] = status;
+    v[5] = fld;
+    v[6] = where;
+}
