@@ -9,7 +9,7 @@
 #include "commands.h"
 #include "csv.h"
 
-/* The paper's figures for the prototype (kinematics.md, "Forward kinematics, Jacobian, metrics"). */
+/* The paper's figures for the prototype (docs/kinematics.md, "Forward kinematics, Jacobian, metrics"). */
 #define PAPER_HAF "11.487"
 #define PAPER_WORKSPACE "0.28"
 
@@ -21,9 +21,9 @@ enum { HAF_DEFAULT_HEIGHTS = 9 };
 const char cmd_haf_help[] =
     "usage: tse-kin haf [--params FILE] [--precision float|double] [--z Z1,Z2,...]\n"
     "\n"
-    "Vertical spatial gear ratio and Height Amplification Factor (kinematics.md). At each height Z\n"
-    "(metres; default: 9 heights spread over L sin(alpha_min) .. L sin(alpha_max), 5 % of the range\n"
-    "in from either stop) prints\n"
+    "Vertical spatial gear ratio and Height Amplification Factor (docs/kinematics.md). At each\n"
+    "height Z (metres; default: 9 heights spread over L sin(alpha_min) .. L sin(alpha_max), 5 % of\n"
+    "the range in from either stop) prints\n"
     "  z,sigma_z,sigma_z_k1_1,haf\n"
     "sigma_z = 1/(sqrt(6)|ds/dZ|) at X = Y = 0, zero orientation; sigma_z_k1_1 the same for the same\n"
     "design with k1 = 1; haf = tse_haf, their ratio. A height without a branch solution gives nan.\n"

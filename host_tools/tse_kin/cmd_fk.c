@@ -29,5 +29,6 @@ static void fk_row(const kin_run *run, const double *v, int n, FILE *out)
 
 int cmd_fk(const kin_run *run)
 {
-    return stream_rows(run, stdin, stdout, 6, 12, 6, fk_row);
+    static const stream_spec spec = {6, 12, 6, "status,scissor,x,y,z,roll,pitch,yaw", fk_row};
+    return stream_rows(run, stdin, stdout, &spec);
 }

@@ -31,5 +31,6 @@ static void ik_row(const kin_run *run, const double *v, int n, FILE *out)
 
 int cmd_ik(const kin_run *run)
 {
-    return stream_rows(run, stdin, stdout, 6, 6, 6, ik_row);
+    static const stream_spec spec = {6, 6, 6, "status,scissor,s_a1,s_b1,s_a2,s_b2,s_a3,s_b3", ik_row};
+    return stream_rows(run, stdin, stdout, &spec);
 }

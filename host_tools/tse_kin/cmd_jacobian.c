@@ -35,5 +35,11 @@ static void jacobian_row(const kin_run *run, const double *v, int n, FILE *out)
 
 int cmd_jacobian(const kin_run *run)
 {
-    return stream_rows(run, stdin, stdout, 6, 6, 42, jacobian_row);
+    static const stream_spec spec = {6, 6, 42,
+                                     "status,scissor,"
+                                     "J11,J12,J13,J14,J15,J16,J21,J22,J23,J24,J25,J26,J31,J32,J33,J34,J35,J36,"
+                                     "J41,J42,J43,J44,J45,J46,J51,J52,J53,J54,J55,J56,J61,J62,J63,J64,J65,J66,"
+                                     "sv1,sv2,sv3,sv4,sv5,sv6",
+                                     jacobian_row};
+    return stream_rows(run, stdin, stdout, &spec);
 }

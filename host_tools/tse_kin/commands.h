@@ -30,6 +30,7 @@ int cmd_jacobian(const kin_run *run);
 int cmd_haf(const kin_run *run);
 int cmd_workspace(const kin_run *run);
 int cmd_bench(const kin_run *run);
+int cmd_params(const kin_run *run);
 
 extern const char cmd_ik_help[];
 extern const char cmd_fk_help[];
@@ -37,23 +38,29 @@ extern const char cmd_jacobian_help[];
 extern const char cmd_haf_help[];
 extern const char cmd_workspace_help[];
 extern const char cmd_bench_help[];
+extern const char cmd_params_help[];
 
 /* Shared paragraphs of the usage texts. */
 #define KIN_HELP_PARAMS                                                                                      \
-    "Parameter file (--params): 'key = value' lines, '#' starts a comment, blank lines allowed. Keys:\n"      \
-    "L, k1, eta_deg, k3, k4, alpha_min_deg, alpha_max_deg, s_min, s_max, mu_min, nu_min (metres,\n"          \
-    "degrees, ratios; see kinematics.md). Missing keys keep the prototype's values. An unknown or\n"          \
-    "repeated key, a value that is not one finite number, or an invalid set is an error naming the\n"        \
-    "file and line (exit 1).\n"
+    "Parameter file (--params): 'key = value' lines, '#' starts a comment, blank lines and a UTF-8\n"        \
+    "BOM allowed; 'tse-kin params' prints one with every key. Keys: L, k1, eta, k3, k4, alpha_min,\n"        \
+    "alpha_max, s_min, s_max, mu_min, nu_min in SI (metres, radians, ratios; see docs/kinematics.md);\n"     \
+    "the angles may instead be given in degrees as eta_deg, alpha_min_deg, alpha_max_deg. The\n"             \
+    "controller's other parameters (slide_vmax, watchdog_ms, ...) are checked to be numbers and\n"           \
+    "ignored. Missing keys keep the prototype's values. An unknown or repeated key (also both\n"             \
+    "spellings of an angle), a value that is not one finite number, or an invalid set is an error\n"         \
+    "naming the file and line (exit 1).\n"
 
 #define KIN_HELP_ROWS                                                                                        \
-    "Input rows: comma-separated numbers, spaces around them allowed, LF or CRLF line ends. Every\n"          \
-    "input line gives exactly one output line, in order. A malformed line (wrong number of fields,\n"        \
-    "an empty field, a non-number, trailing text, a NUL byte, more than 4096 bytes) and a blank line\n"      \
-    "give 'invalid,0' followed by nan for every number, and the stream goes on. Rows of numbers that\n"      \
-    "are not finite (nan, inf) go to the library, which answers 'invalid' itself; so do numbers\n"       \
-    "beyond the float range with --precision float, where they become inf. NaN is always written\n"      \
-    "'nan'; other numbers are written with %.17g.\n"
+    "Input rows: comma-separated numbers, spaces around them allowed, LF or CRLF line ends, a UTF-8\n"       \
+    "BOM at the start skipped. Every input line gives exactly one output line, in order. The first\n"        \
+    "line may be a header (as many names as a row has numbers, e.g. x,y,z,roll,pitch,yaw): it is\n"          \
+    "answered by the output's header. A malformed line (wrong number of fields, an empty field, a\n"         \
+    "non-number, trailing text, a NUL byte, more than 4096 bytes) and a blank line give 'invalid,0'\n"       \
+    "followed by nan for every number, and the stream goes on. Rows of numbers that are not finite\n"        \
+    "(nan, inf) go to the library, which answers 'invalid' itself; so do numbers beyond the float\n"         \
+    "range with --precision float, where they become inf. NaN is always written 'nan'; other numbers\n"      \
+    "are written with %.17g.\n"
 
 #define KIN_HELP_EXIT "Exit status: 0 input read to its end, 1 unreadable or invalid file, 2 usage error.\n"
 

@@ -1,4 +1,4 @@
-/* tse-kin: offline kinematics and design analysis of a TSE (kinematics.md).
+/* tse-kin: offline kinematics and design analysis of a TSE (docs/kinematics.md).
  *
  * Promise: dispatch only.  `tse-kin COMMAND [options]`; --help anywhere prints the usage to stdout
  * and exits 0; a bad command line exits 2 with the reason on stderr; a parameter file that cannot
@@ -32,6 +32,8 @@ static const command commands[] = {
      cmd_workspace_help},
     {"bench", "timing of inverse and forward kinematics, double and float", KIN_OPT_PARAMS | KIN_OPT_N, 0,
      cmd_bench, cmd_bench_help},
+    {"params", "a parameter file of the defaults, every key with its unit and rule", 0, 0, cmd_params,
+     cmd_params_help},
 };
 enum { N_COMMANDS = (int)(sizeof commands / sizeof commands[0]) };
 
@@ -40,7 +42,7 @@ static void print_usage(FILE *f)
     fputs("usage: tse-kin COMMAND [options]\n"
           "       tse-kin COMMAND --help\n"
           "\n"
-          "Offline kinematics of the Triple Scissor Extender (kinematics.md). Units: metres, radians.\n"
+          "Offline kinematics of the Triple Scissor Extender (docs/kinematics.md). Units: metres, radians.\n"
           "\n"
           "commands:\n",
           f);
@@ -140,7 +142,8 @@ int main(int argc, char **argv)
     const command *c = find_command(name);
     if (!c) {
         char msg[256];
-        snprintf(msg, sizeof msg, "unknown command '%.60s' (commands: ik, fk, jacobian, haf, workspace, bench)", name);
+        snprintf(msg, sizeof msg,
+                 "unknown command '%.60s' (commands: ik, fk, jacobian, haf, workspace, bench, params)", name);
         return usage_error(NULL, msg);
     }
     /* --help wins over anything else on the line, even a mistake. */

@@ -4,45 +4,75 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "fw/params.h"
+#include "line_reader.h"
+
 #define KIN_PI 3.14159265358979323846
 
-typedef struct {
-    tse_param_id id;
-    const char *key;  /* tse_param_name(id), plus "_deg" for angles (checked by the unit tests) */
-    int degrees;
-    const char *rule; /* kinematics.md, "Valid parameter sets", in the file's units */
-} key_def;
-
-static const key_def keys[] = {
-    {TSE_PARAM_L, "L", 0, "L > 0"},
-    {TSE_PARAM_K1, "k1", 0, "0 < k1 <= 1"},
-    {TSE_PARAM_ETA, "eta_deg", 1, "-90 < eta_deg < 90"},
-    {TSE_PARAM_K3, "k3", 0, "k3 >= 0"},
-    {TSE_PARAM_K4, "k4", 0, "k4 > 0"},
-    {TSE_PARAM_ALPHA_MIN, "alpha_min_deg", 1, "0 < alpha_min_deg < 90"},
-    {TSE_PARAM_ALPHA_MAX, "alpha_max_deg", 1, "alpha_min_deg < alpha_max_deg < 90"},
-    {TSE_PARAM_S_MIN, "s_min", 0, "s_min >= 0"},
-    {TSE_PARAM_S_MAX, "s_max", 0, "s_min < s_max"},
-    {TSE_PARAM_MU_MIN, "mu_min", 0, "0 <= mu_min < 1"},
-    {TSE_PARAM_NU_MIN, "nu_min", 0, "0 <= nu_min < 1"},
+static const kin_param_key_def keys[] = {
+    {TSE_PARAM_L, "L", 0, "m", "L > 0", "total scissor length"},
+    {TSE_PARAM_K1, "k1", 0, "", "0 < k1 <= 1", "l0 / L, the lowest link's share of the length"},
+    {TSE_PARAM_ETA, "eta", 0, "rad", "-pi/2 < eta < pi/2", "slide angle from the local x axis"},
+    {TSE_PARAM_ETA, "eta_deg", 1, "deg", "-90 < eta_deg < 90", "slide angle from the local x axis"},
+    {TSE_PARAM_K3, "k3", 0, "", "k3 >= 0", "r_act / L, radial offset of each scissor's slide origin"},
+    {TSE_PARAM_K4, "k4", 0, "", "k4 > 0", "r_top / L, top plate radius (centre to ball joint)"},
+    {TSE_PARAM_ALPHA_MIN, "alpha_min", 0, "rad", "0 < alpha_min < pi/2", "scissor angle stop, low"},
+    {TSE_PARAM_ALPHA_MIN, "alpha_min_deg", 1, "deg", "0 < alpha_min_deg < 90", "scissor angle stop, low"},
+    {TSE_PARAM_ALPHA_MAX, "alpha_max", 0, "rad", "alpha_min < alpha_max < pi/2", "scissor angle stop, high"},
+    {TSE_PARAM_ALPHA_MAX, "alpha_max_deg", 1, "deg", "alpha_min_deg < alpha_max_deg < 90",
+     "scissor angle stop, high"},
+    {TSE_PARAM_S_MIN, "s_min", 0, "m", "s_min >= 0", "slide stroke, low end"},
+    {TSE_PARAM_S_MAX, "s_max", 0, "m", "s_min < s_max", "slide stroke, high end"},
+    {TSE_PARAM_MU_MIN, "mu_min", 0, "", "0 <= mu_min < 1", "type-1 singularity margin"},
+    {TSE_PARAM_NU_MIN, "nu_min", 0, "", "0 <= nu_min < 1", "type-2 singularity margin"},
 };
 enum { N_KEYS = (int)(sizeof keys / sizeof keys[0]) };
 
-static const key_def *key_of_id(tse_param_id id)
+int kin_param_keys(const kin_param_key_def **out)
+{
+    *out = keys;
+    return N_KEYS;
+}
+
+static const kin_param_key_def *key_of(tse_param_id id, int degrees)
 {
     for (int i = 0; i < N_KEYS; ++i)
-        if (keys[i].id == id)
+        if (keys[i].id == id && keys[i].degrees == degrees)
+            return &keys[i];
+    return NULL;
+}
+
+static const kin_param_key_def *key_of_name(const char *name)
+{
+    for (int i = 0; i < N_KEYS; ++i)
+        if (!strcmp(keys[i].key, name))
             return &keys[i];
     return NULL;
 }
 
 const char *kin_param_key(tse_param_id id)
 {
-    const key_def *k = key_of_id(id);
+    const kin_param_key_def *k = key_of(id, 0);
     return k ? k->key : "?";
+}
+
+/* The controller's parameters that are not kinematic, by their index in fw_param_table; -1 for
+ * any other name. */
+static int controller_only(const char *name)
+{
+    for (int i = 0; i < FP_COUNT; ++i)
+        if (!strcmp(fw_param_table[i].name, name))
+            return key_of_name(name) ? -1 : i;
+    return -1;
+}
+
+int kin_param_is_controller_only(const char *name)
+{
+    return controller_only(name) >= 0;
 }
 
 void kin_params_default(kin_param_values *p)
@@ -66,19 +96,23 @@ void kin_params_default(kin_param_values *p)
 void kin_params_describe_invalid(const kin_param_values *p, tse_param_id bad, const char *name,
                                  const char *context, char *err, size_t errlen)
 {
-    const key_def *k = key_of_id(bad);
+    /* In the spelling the file used, with enough digits that a value just past a bound is visible. */
+    const int set = p->line[bad] > 0;
+    const kin_param_key_def *k = key_of(bad, set && p->degrees[bad]);
     if (!k) {
         snprintf(err, errlen, "%s: invalid parameter set%s", name, context);
         return;
     }
-    /* Shown in the file's units, with enough digits that a value just past a bound is visible. */
     const double shown = k->degrees ? p->v[bad] * (180.0 / KIN_PI) : p->v[bad];
-    if (p->line[bad] > 0)
+    char deg[48] = "";
+    if (!k->degrees && !strcmp(k->unit, "rad"))
+        snprintf(deg, sizeof deg, " (%.9g deg)", p->v[bad] * (180.0 / KIN_PI));
+    if (set)
         snprintf(err, errlen, "%s:%d: %s = %.15g is invalid%s (needs %s)", name, p->line[bad], k->key, shown,
                  context, k->rule);
     else
-        snprintf(err, errlen, "%s: default value %s = %.15g is invalid%s with the values given (needs %s)", name,
-                 k->key, shown, context, k->rule);
+        snprintf(err, errlen, "%s: default value %s = %.15g%s is invalid%s with the values given (needs %s)",
+                 name, k->key, shown, deg, context, k->rule);
 }
 
 static char *trim(char *s)
@@ -89,14 +123,6 @@ static char *trim(char *s)
     while (e > s && isspace((unsigned char)e[-1]))
         *--e = '\0';
     return s;
-}
-
-static const key_def *key_of_name(const char *name)
-{
-    for (int i = 0; i < N_KEYS; ++i)
-        if (!strcmp(keys[i].key, name))
-            return &keys[i];
-    return NULL;
 }
 
 /* The whole token must be one finite number in range: "1.5x", "", "nan" and "1e999" are refused. */
@@ -128,8 +154,35 @@ static void to_tse(const kin_param_values *p, tse_params *t)
     t->nu_min = p->v[TSE_PARAM_NU_MIN];
 }
 
+/* What one parse has seen so far: the parameters, and the lines of the ignored controller keys. */
+typedef struct {
+    kin_param_values p;
+    int controller_line[FP_COUNT];
+    const char *name;
+    char *err;
+    size_t errlen;
+} parse_state;
+
+__attribute__((format(printf, 3, 4))) static int fail(const parse_state *st, int lineno, const char *fmt, ...)
+{
+    char what[384];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    snprintf(st->err, st->errlen, "%s:%d: %s", st->name, lineno, what);
+    return -1;
+}
+
+static int value_of(const parse_state *st, int lineno, const char *key, const char *val, double *x)
+{
+    if (parse_value(val, x) != 0)
+        return fail(st, lineno, "value of %s is not a finite number: '%s'", key, val);
+    return 0;
+}
+
 /* One line (comment and surrounding blanks included); 0, or -1 with the message in err. */
-static int parse_line(char *buf, int lineno, const char *name, kin_param_values *p, char *err, size_t errlen)
+static int parse_line(char *buf, int lineno, parse_state *st)
 {
     char *hash = strchr(buf, '#');
     if (hash)
@@ -138,42 +191,57 @@ static int parse_line(char *buf, int lineno, const char *name, kin_param_values 
     if (*line == '\0')
         return 0;
     char *eq = strchr(line, '=');
-    if (!eq) {
-        snprintf(err, errlen, "%s:%d: expected 'key = value', got '%s'", name, lineno, line);
-        return -1;
-    }
+    if (!eq)
+        return fail(st, lineno, "expected 'key = value', got '%s'", line);
     *eq = '\0';
     const char *key = trim(line), *val = trim(eq + 1);
-    const key_def *k = key_of_name(key);
-    if (!k) {
-        snprintf(err, errlen,
-                 "%s:%d: unknown key '%s' (keys: L, k1, eta_deg, k3, k4, alpha_min_deg, alpha_max_deg, s_min, "
-                 "s_max, mu_min, nu_min)",
-                 name, lineno, key);
-        return -1;
-    }
-    if (p->line[k->id] > 0) {
-        snprintf(err, errlen, "%s:%d: '%s' given twice (first on line %d)", name, lineno, key, p->line[k->id]);
-        return -1;
-    }
     double x;
-    if (parse_value(val, &x) != 0) {
-        snprintf(err, errlen, "%s:%d: value of %s is not a finite number: '%s'", name, lineno, key, val);
-        return -1;
+    const int ctl = controller_only(key);
+    if (ctl >= 0) {
+        if (st->controller_line[ctl] > 0)
+            return fail(st, lineno, "'%s' given twice (first on line %d)", key, st->controller_line[ctl]);
+        if (value_of(st, lineno, key, val, &x) != 0)
+            return -1;
+        st->controller_line[ctl] = lineno; /* the controller's: checked, not used here */
+        return 0;
     }
+    const kin_param_key_def *k = key_of_name(key);
+    if (!k)
+        return fail(st, lineno,
+                    "unknown key '%s' (keys: L, k1, eta, k3, k4, alpha_min, alpha_max, s_min, s_max, mu_min, "
+                    "nu_min; angles also as eta_deg, alpha_min_deg, alpha_max_deg; and the controller's "
+                    "parameters, which 'tse-kin params' lists)",
+                    key);
+    kin_param_values *p = &st->p;
+    if (p->line[k->id] > 0) {
+        const kin_param_key_def *first = key_of(k->id, p->degrees[k->id]);
+        if (first == k)
+            return fail(st, lineno, "'%s' given twice (first on line %d)", key, p->line[k->id]);
+        return fail(st, lineno, "'%s' and '%s' (line %d) are the same parameter; give one of them", key,
+                    first->key, p->line[k->id]);
+    }
+    if (value_of(st, lineno, key, val, &x) != 0)
+        return -1;
     p->v[k->id] = k->degrees ? x * (KIN_PI / 180.0) : x;
     p->line[k->id] = lineno;
+    p->degrees[k->id] = k->degrees;
     return 0;
 }
 
 kin_params_outcome kin_params_parse(const char *text, const char *name, kin_param_values *out, char *err,
                                     size_t errlen)
 {
-    kin_param_values p = *out;
+    parse_state st;
+    memset(&st, 0, sizeof st);
+    st.p = *out;
+    st.name = name;
+    st.err = err;
+    st.errlen = errlen;
     /* Lines already recorded belong to some earlier parse; duplicates are judged within this text. */
-    memset(p.line, 0, sizeof p.line);
+    memset(st.p.line, 0, sizeof st.p.line);
+    memset(st.p.degrees, 0, sizeof st.p.degrees);
     int lineno = 0;
-    for (const char *cur = text; *cur;) {
+    for (const char *cur = text + utf8_bom_length(text, strlen(text)); *cur;) {
         ++lineno;
         const char *nl = strchr(cur, '\n');
         const size_t len = nl ? (size_t)(nl - cur) : strlen(cur);
@@ -185,17 +253,17 @@ kin_params_outcome kin_params_parse(const char *text, const char *name, kin_para
         memcpy(buf, cur, len);
         buf[len] = '\0';
         cur = nl ? nl + 1 : cur + len;
-        if (parse_line(buf, lineno, name, &p, err, errlen) != 0)
+        if (parse_line(buf, lineno, &st) != 0)
             return KIN_PARAMS_BAD;
     }
     tse_params t;
-    to_tse(&p, &t);
+    to_tse(&st.p, &t);
     const tse_param_id bad = tse_params_check(&t);
     if (bad != TSE_PARAM_OK) {
-        kin_params_describe_invalid(&p, bad, name, "", err, errlen);
+        kin_params_describe_invalid(&st.p, bad, name, "", err, errlen);
         return KIN_PARAMS_BAD;
     }
-    *out = p;
+    *out = st.p;
     return KIN_PARAMS_OK;
 }
 

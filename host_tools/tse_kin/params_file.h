@@ -1,11 +1,19 @@
 /* The parameter file of tse-kin.
  *
- * Promise: `key = value` lines with the keys L, k1, eta_deg, k3, k4, alpha_min_deg, alpha_max_deg,
- * s_min, s_max, mu_min, nu_min; `#` starts a comment (whole line or trailing); blank lines and CRLF
- * are fine.  Missing keys keep the prototype's values (tse_params_default).  Angles are degrees in
- * the file and radians in kin_param_values.  An unknown key, a repeated key, a value that is not
- * one finite number, or a set the library rejects is an error whose message names the file and the
- * line (or "default value" for a key the file did not set).  No I/O other than the FILE* given. */
+ * Promise: `key = value` lines; `#` starts a comment (whole line or trailing); blank lines, CRLF
+ * and a UTF-8 BOM at the start are fine.  Names follow the controller's parameter table
+ * (fw_param_table, firmware/include/fw/params.h): a name without a unit suffix is in SI (m, rad,
+ * m/s, plain ratios), a name with one carries its unit.  The kinematic keys are L, k1, eta, k3,
+ * k4, alpha_min, alpha_max, s_min, s_max, mu_min, nu_min; the three angles may instead be given
+ * in degrees as eta_deg, alpha_min_deg, alpha_max_deg.  The controller's other names (slide_vmax,
+ * watchdog_ms, ..., can_kbps, in SI or their suffix's unit) are accepted, checked to be one finite
+ * number and ignored, so that one file serves tse-kin and the simulator.  Keys are case-sensitive.
+ * Missing keys keep the prototype's values (tse_params_default).
+ *
+ * An unknown key, a key given twice (also under its other spelling: both lines are named), a value
+ * that is not one finite number, or a set the library rejects is an error whose message names the
+ * file and the line (or "default value" for a key the file did not set).  Nothing is applied from
+ * a refused file.  No I/O other than the FILE* given. */
 #ifndef TSE_KIN_PARAMS_FILE_H
 #define TSE_KIN_PARAMS_FILE_H
 
@@ -22,7 +30,8 @@
  * came from: the precision-neutral form that both library builds are fed from. */
 typedef struct {
     double v[TSE_PARAM_COUNT];
-    int line[TSE_PARAM_COUNT]; /* line of the file that set the value; 0 for a default */
+    int line[TSE_PARAM_COUNT];    /* line of the file that set the value; 0 for a default */
+    int degrees[TSE_PARAM_COUNT]; /* set through its _deg spelling: messages speak degrees */
 } kin_param_values;
 
 /* Outcome of loading a file; the values are tse-kin's exit codes' reasons. */
@@ -31,6 +40,19 @@ typedef enum {
     KIN_PARAMS_BAD = -1,       /* read, but not a valid parameter file */
     KIN_PARAMS_UNREADABLE = -2 /* cannot be opened or read */
 } kin_params_outcome;
+
+/* One spelling of a kinematic key, for the template and the tests. */
+typedef struct {
+    tse_param_id id;
+    const char *key;  /* "eta", "eta_deg", ... */
+    int degrees;      /* the value is in degrees */
+    const char *unit; /* of the value: "m", "rad", "deg", or "" for a ratio */
+    const char *rule; /* docs/kinematics.md, "Valid parameter sets", in this spelling's unit */
+    const char *doc;
+} kin_param_key_def;
+
+/* The kinematic spellings, SI before degrees, in the order of tse_param_id; returns how many. */
+int kin_param_keys(const kin_param_key_def **keys);
 
 /* The prototype's values (tse_params_default of the double build), no line. */
 void kin_params_default(kin_param_values *p);
@@ -49,13 +71,16 @@ kin_params_outcome kin_params_parse_stream(FILE *f, const char *name, kin_param_
 kin_params_outcome kin_params_load(const char *path, kin_param_values *p, char *err, size_t errlen);
 
 /* Message for a set that a library build rejected with `bad` (tse_geometry_init's answer): names
- * the line that set that key, or says it is the default value.  `name` is the file name (or a
- * description when there is no file); `context` is appended to the complaint, e.g. " in float
- * precision", or "". */
+ * the line that set that key (in the spelling the file used), or says it is the default value.
+ * `name` is the file name (or a description when there is no file); `context` is appended to the
+ * complaint, e.g. " in float precision", or "". */
 void kin_params_describe_invalid(const kin_param_values *p, tse_param_id bad, const char *name,
                                  const char *context, char *err, size_t errlen);
 
-/* The file's key of a parameter: tse_param_name with "_deg" for angles ("eta_deg"); "?" if none. */
+/* The SI key of a parameter: tse_param_name ("eta"); "?" if none. */
 const char *kin_param_key(tse_param_id id);
+
+/* Whether name is one of the controller's parameters that tse-kin accepts and ignores. */
+int kin_param_is_controller_only(const char *name);
 
 #endif

@@ -24,6 +24,12 @@ tse_status tse_fk(const tse_geometry *g, const tse_real q[6], const tse_real see
         if (!isfinite(q[k]) || !isfinite(seed[k]))
             return fail(out, TSE_INVALID, 0);
     }
+    /* Slides outside the stroke have no accepted pose, whatever Newton would make of them; said
+     * before solving, since that search can end anywhere (no pose at all, or one the check then
+     * refuses for another reason). */
+    for (int k = 0; k < 6; ++k)
+        if (!(q[k] >= g->p.s_min && q[k] <= g->p.s_max))
+            return fail(out, TSE_STROKE, k / 2 + 1);
 
     /* Same stopping rule as the per-scissor Newton: after a step this small the quadratic
      * error left is below what the precision resolves. */

@@ -6,7 +6,8 @@ Usage: cli_contract.py PATH/TO/tse-kin
 Exit codes, one output line per input line, malformed rows answered `invalid` without stopping the
 stream, order independence, --help everywhere, parameter files, and the figures.  Every expected
 number comes from kinematics.md (its worked values, its prototype) or from hand algebra on its
-equations, never from tse-kin's own output:
+equations, never from tse-kin's own output (or, for `tse-kin params`, from the defaults it must
+reproduce):
 
 On the vertical axis (X = Y = 0, zero orientation) C_i = r_top e_r + Z e_z and O_i = r_act e_r, so
 u = v = u0 = (r_top - r_act) sin(eta) and rho2 = (r_top - r_act)^2 + Z^2.  By the scissor's mirror
@@ -121,7 +122,7 @@ rc, out, err = run(["frobnicate"])
 check("the unknown command is named", "frobnicate" in err, err)
 
 # ---------------------------------------------------------------- --help
-for cmd in ["", "ik", "fk", "jacobian", "haf", "workspace", "bench"]:
+for cmd in ["", "ik", "fk", "jacobian", "haf", "workspace", "bench", "params"]:
     for form in (([cmd] if cmd else []) + ["--help"], ([cmd] if cmd else []) + ["-h"],
                  ["help"] + ([cmd] if cmd else [])):
         rc, out, err = run(form)
@@ -134,6 +135,15 @@ rc, out, err = run(["ik", "--help"])
 check("ik --help documents blank lines", "blank line" in out, out)
 rc, out, err = run(["ik", "--bogus", "--help"])
 check("--help wins over a bad option", rc == 0 and out.startswith("usage: tse-kin ik"), f"rc {rc}")
+# The contract the help cites ships with the project.
+KIN_MD = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "kinematics.md")
+for form in (["--help"], ["ik", "--help"], ["haf", "--help"]):
+    rc, out, err = run(form)
+    check(f"{' '.join(form)} cites docs/kinematics.md", "docs/kinematics.md" in out and
+          re.search(r"(?<!docs/)kinematics\.md", out) is None, out)
+check("docs/kinematics.md is in the repository", os.path.isfile(KIN_MD), KIN_MD)
+rc, out, err = run(["params", "--params", "x"])
+check("params takes no options (exit 2)", rc == 2 and out == "", f"rc {rc}")
 
 # ---------------------------------------------------------------- worked values, both precisions
 for prec in ("double", "float"):
@@ -182,6 +192,46 @@ check("non-finite rows: one line each", rc == 0 and len(outl) == len(nonfinite),
 for inp, o in zip(nonfinite, outl):
     check(f"non-finite row {inp} is invalid", fields(o)[0] == "invalid" and well_formed(o, 6), o)
 
+# A UTF-8 BOM before the first row is not part of it.
+rc, out, err = run(["ik"], b"\xef\xbb\xbf" + good.encode() + b"\n" + good.encode() + b"\n")
+outl = out.split("\n")[:-1]
+check("a BOM before the first row is skipped", rc == 0 and len(outl) == 2 and all(o.startswith("ok,0,") for o in outl),
+      repr(out))
+rc, out, err = run(["ik"], good.encode() + b"\n\xef\xbb\xbf" + good.encode() + b"\n")
+outl = out.split("\n")[:-1]
+check("a BOM anywhere else makes its line invalid", rc == 0 and len(outl) == 2 and invalid_line(outl[1], 6), repr(out))
+
+# A first line of names is a header, answered by the output's header.
+IK_HEAD = "status,scissor,s_a1,s_b1,s_a2,s_b2,s_a3,s_b3"
+POSE_HEAD = "status,scissor,x,y,z,roll,pitch,yaw"
+JAC_HEAD = ("status,scissor," + ",".join(f"J{i}{j}" for i in range(1, 7) for j in range(1, 7)) + "," +
+            ",".join(f"sv{k}" for k in range(1, 7)))
+for cmd, head, row, want, numbers in (
+        ("ik", "x,y,z,roll,pitch,yaw", good, IK_HEAD, 6),
+        ("ik", " X , Y ,Z,Roll,Pitch,Yaw\r", good, IK_HEAD, 6),
+        ("fk", "s_a1,s_b1,s_a2,s_b2,s_a3,s_b3", csv(WORKED1[1]), POSE_HEAD, 6),
+        ("fk", "s_a1,s_b1,s_a2,s_b2,s_a3,s_b3,x0,y0,z0,roll0,pitch0,yaw0", csv(WORKED1[1] + WORKED1[0]), POSE_HEAD, 6),
+        ("jacobian", "x,y,z,roll,pitch,yaw", good, JAC_HEAD, 42)):
+    for bom in (b"", b"\xef\xbb\xbf"):
+        rc, out, err = run([cmd], bom + (head + "\n" + row + "\n").encode())
+        outl = out.split("\n")[:-1]
+        check(f"{cmd}: header {head.strip()!r}{' after a BOM' if bom else ''} answered by {want[:40]}...",
+              rc == 0 and len(outl) == 2 and outl[0] == want and well_formed(outl[1], numbers)
+              and fields(outl[1])[0] == "ok" and err == "", f"{out[:120]!r} {err!r}")
+# Not headers: too few or too many names, names mixed with numbers, a header after the first line,
+# and a line of nan and inf (numbers, answered by the library).
+for text, name in (("x,y,z,roll,pitch\n", "five names"), ("x,y,z,roll,pitch,yaw,w\n", "seven names"),
+                   ("x,y,z,1,2,3\n", "names and numbers"), ("x,y,z,roll,pitch,y-aw\n", "a name with '-'"),
+                   ("x,y,,roll,pitch,yaw\n", "an empty name"),
+                   (good + "\nx,y,z,roll,pitch,yaw\n", "a header on line 2")):
+    rc, out, err = run(["ik"], text)
+    outl = out.split("\n")[:-1]
+    check(f"ik: {name} is a malformed line", rc == 0 and len(outl) == text.count("\n") and invalid_line(outl[-1], 6),
+          repr(out))
+rc, out, err = run(["ik"], "nan,inf,nan,nan,nan,nan\n")
+check("ik: a first line of nan and inf is numbers, not a header",
+      rc == 0 and fields(out.strip())[0] == "invalid" and well_formed(out.strip(), 6), repr(out))
+
 # CRLF, spaces, a last line without a newline.
 rc, crlf, err = run(["ik"], "0,0,1,0,0,0\r\n 0.1 , -0.05 ,1.1,0.1,-0.05,0.2\r\n0,0,1,0,0,0")
 rc2, lf, err2 = run(["ik"], "0,0,1,0,0,0\n0.1,-0.05,1.1,0.1,-0.05,0.2\n0,0,1,0,0,0\n")
@@ -225,12 +275,12 @@ rc, out, err = run(["fk"], "1,1,1,1,1,1\n0.43,0.43,0.43,0.43,0.43\n" + csv(WORKE
                    "0.43,0.43,0.43,0.43,0.43,0.43,0.43\n")
 outl = out.split("\n")[:-1]
 check("fk: one line per line", rc == 0 and len(outl) == 4, repr(out))
-if len(outl) == 4:
-    f = fields(outl[0])
-    check("fk: a failure never shows a pose", well_formed(outl[0], 6) and (f[0] == "ok" or f[2:] == ["nan"] * 6),
-          outl[0])
-    for o in outl[1:]:
-        check("fk: 5, 11 or 7 numbers are malformed", invalid_line(o, 6), o)
+# Slides outside the stroke (0..0.9 m, docs/kinematics.md) are a stroke rejection of the first such
+# slide's scissor, whether or not a pose would exist, seeded or not.
+for q, sc in (([1.0] * 6, 1), ([0.43] * 5 + [0.95], 3), ([0.43, 0.43, -0.01, 0.43, 0.43, 0.43], 2),
+              ([0.43, 0.43, 0.43, 0.91, 0.43, 0.43] + WORKED1[0], 2)):
+    rc, out, err = run(["fk"], csv(q) + "\n")
+    check(f"fk of {q}: stroke of scissor {sc}", rc == 0 and out == f"stroke,{sc}" + ",nan" * 6 + "\n", out)
 
 # ---------------------------------------------------------------- jacobian
 rc, out, err = run(["jacobian"], "0,0,1,0,0,0\nabc\n0,0,5,0,0,0\n")
@@ -338,7 +388,7 @@ check("invalid set exits 1 naming the key's line", rc == 1 and f"{bad}:2: eta_de
 bad = write("dflt.params", "alpha_min_deg = 75\n")
 rc, out, err = run(["bench", "--params", bad, "--n", "10"])
 check("invalid set through a default names the default value",
-      rc == 1 and "default value alpha_max_deg" in err and out == "", err)
+      rc == 1 and "default value alpha_max = " in err and out == "", err)
 # Valid in double, but L overflows float: the float build refuses it, by name.
 big = write("big.params", "L = 1e39\n")
 rc, out, err = run(["ik", "--params", big], good + "\n")
@@ -377,6 +427,55 @@ if same:
         same = same and fa[:2] == fb[:2] and all(
             (x == y) or abs(float(x) - float(y)) < 1e-12 for x, y in zip(fa[2:], fb[2:]))
 check("the prototype written out in a file (degrees) answers as the defaults", same, err)
+
+# ---------------------------------------------------------------- one naming scheme, and the template
+# The prototype in SI names (radians): the same answers as the defaults.
+si = write("si.params", "\n".join([
+    "L = 1.727", "k1 = 0.2647", f"eta = {math.pi / 6!r}", "k3 = 0.0186", "k4 = 0.11765",
+    f"alpha_min = {math.asin(0.324 / 1.727)!r}", f"alpha_max = {math.asin(1.619 / 1.727)!r}",
+    "s_min = 0", "s_max = 0.9", "mu_min = 0.05", "nu_min = 0.001"]) + "\n")
+rc, a, err = run(["ik", "--params", si], sample)
+check("the prototype in SI names (radians) answers exactly as the defaults", rc == 0 and a == b, err)
+# Radians are radians: eta = 30 is refused, not read as degrees.
+bad = write("eta_rad.params", "eta = 30\n")
+rc, out, err = run(["ik", "--params", bad], good + "\n")
+check("eta = 30 (radians) is an invalid set", rc == 1 and f"{bad}:1: eta = 30 is invalid" in err, err)
+# One parameter in both spellings: both lines named.
+both = write("both.params", "alpha_max = 1.2\nL = 1.727\nalpha_max_deg = 69\n")
+rc, out, err = run(["ik", "--params", both], good + "\n")
+check("both spellings of alpha_max exit 1 naming both lines",
+      rc == 1 and f"{both}:3: 'alpha_max_deg' and 'alpha_max' (line 1)" in err and out == "", err)
+# The controller's names in SI: checked to be numbers, then ignored.
+ctl = write("ctl.params", "\ufeffL = 1.727\r\nslide_vmax = 0.15\r\nplate_jmax = 10\r\nwatchdog_ms = 500\r\n"
+            "home_sw_3 = 0.2\r\ncan_kbps = 500\r\nstep_pulse_ns = 2000\r\n")
+rc, a, err = run(["ik", "--params", ctl], sample)
+check("a file with a BOM and the controller's names answers as the defaults", rc == 0 and a == b, err)
+ctl_bad = write("ctl_bad.params", "slide_vmax = 0.15\nwatchdog_ms = half a second\n")
+rc, out, err = run(["ik", "--params", ctl_bad], good + "\n")
+check("a controller name with a non-number exits 1 naming the line",
+      rc == 1 and f"{ctl_bad}:2: value of watchdog_ms is not a finite number" in err, err)
+# `tse-kin params` writes a file that --params takes unchanged, and that answers as the defaults.
+rc, tpl, err = run(["params"])
+check("params exits 0 writing a template", rc == 0 and err == "" and "\nL = " in tpl, f"rc {rc} {err}")
+tpl_path = write("template.params", tpl)
+for prec in ("double", "float"):
+    rc, a, err = run(["ik", "--params", tpl_path, "--precision", prec], sample)
+    rc2, b2, err2 = run(["ik", "--precision", prec], sample)
+    check(f"params > p.txt; ik --params p.txt answers exactly as the defaults ({prec})", rc == 0 and a == b2, err)
+rc, a, err = run(["workspace", "--params", tpl_path, "--grid", "3,3,3"])
+rc2, b2, err2 = run(["workspace", "--grid", "3,3,3"])
+check("the template serves workspace too", rc == 0 and a == b2, err)
+keys = [l.split("=")[0].strip() for l in tpl.split("\n") if l and not l.startswith("#")]
+for k in ("L", "k1", "eta", "k3", "k4", "alpha_min", "alpha_max", "s_min", "s_max", "mu_min", "nu_min",
+          "slide_vmax", "watchdog_ms", "can_kbps"):
+    check(f"the template sets {k} once", keys.count(k) == 1, repr(keys))
+check("the template speaks SI (no _deg key)", not any(k.endswith("_deg") for k in keys), repr(keys))
+eta_line = [l for l in tpl.split("\n") if l.startswith("eta = ")]
+check("the template gives eta in radians with degrees in the comment",
+      len(eta_line) == 1 and abs(float(eta_line[0].split("=")[1].split("#")[0]) - math.pi / 6) < 1e-15
+      and "# rad (30 deg)" in eta_line[0], repr(eta_line))
+check("every template line that sets a key has a comment with its unit",
+      all("#" in l for l in tpl.split("\n") if l and not l.startswith("#")), tpl)
 
 print(f"{passes} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)

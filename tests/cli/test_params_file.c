@@ -1,7 +1,8 @@
-/* tse-kin's parameter file (host_tools/tse_kin/params_file.h): defaults, degrees, comments, and an
- * error naming the file and line for every kind of mistake.  Expected values are the prototype of
- * kinematics.md and hand conversions, not the parser's output. */
-#define _POSIX_C_SOURCE 200809L /* fmemopen, mkstemp */
+/* tse-kin's parameter file (host_tools/tse_kin/params_file.h) and its template (params_template.h):
+ * defaults, SI names and degrees, the controller's names, comments, a BOM, and an error naming the
+ * file and line for every kind of mistake.  Expected values are the prototype of
+ * docs/kinematics.md, the controller's table and hand conversions, not the parser's output. */
+#define _POSIX_C_SOURCE 200809L /* fmemopen, mkstemp, open_memstream */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -14,7 +15,9 @@
 
 #include <cmocka.h>
 
+#include "fw/params.h"
 #include "params_file.h"
+#include "params_template.h"
 
 #define PI 3.14159265358979323846
 
@@ -94,6 +97,138 @@ static void test_degrees_and_units(void **state)
     assert_true(p.v[TSE_PARAM_S_MAX] == 0.5);
     const kin_param_values n = parse_ok("eta_deg = -30\n");
     assert_close(n.v[TSE_PARAM_ETA], -PI / 6, 1e-15);
+    /* The SI names take radians, unconverted. */
+    const kin_param_values r = parse_ok("eta = 0.5\nalpha_min = 0.2\nalpha_max = 1.25\n");
+    assert_true(r.v[TSE_PARAM_ETA] == 0.5);
+    assert_true(r.v[TSE_PARAM_ALPHA_MIN] == 0.2);
+    assert_true(r.v[TSE_PARAM_ALPHA_MAX] == 1.25);
+    assert_int_equal(r.line[TSE_PARAM_ALPHA_MAX], 3);
+    /* The two spellings may be mixed across parameters. */
+    const kin_param_values m = parse_ok("eta = -0.25\nalpha_min_deg = 15\n");
+    assert_true(m.v[TSE_PARAM_ETA] == -0.25);
+    assert_close(m.v[TSE_PARAM_ALPHA_MIN], PI / 12, 1e-15);
+}
+
+static void test_both_spellings_of_one_parameter(void **state)
+{
+    (void)state;
+    expect_error("eta = 0.5\nL = 2\neta_deg = 30\n",
+                 "f.params:3: 'eta_deg' and 'eta' (line 1) are the same parameter", NULL);
+    expect_error("alpha_max_deg = 60\nalpha_max = 1\n",
+                 "f.params:2: 'alpha_max' and 'alpha_max_deg' (line 1)", NULL);
+    expect_error("alpha_min = 0.2\n# c\nalpha_min_deg = 11.4\n",
+                 "f.params:3: 'alpha_min_deg' and 'alpha_min' (line 1)", NULL);
+    expect_error("eta = 0.5\neta = 0.5\n", "f.params:2: 'eta' given twice (first on line 1)", NULL);
+}
+
+/* The controller's table (fw_param_table) names the parameters: its kinematic names are the
+ * library's, and every other name is accepted and ignored. */
+static void test_controller_names(void **state)
+{
+    (void)state;
+    for (int id = 1; id < TSE_PARAM_COUNT; ++id)
+        assert_string_equal(fw_param_table[FP_L + id - 1].name, tse_param_name((tse_param_id)id));
+    kin_param_values d;
+    kin_params_default(&d);
+    int others = 0;
+    for (int i = 0; i < FP_COUNT; ++i) {
+        const char *name = fw_param_table[i].name;
+        const int kinematic = i < TSE_PARAM_COUNT - 1;
+        assert_int_equal(kin_param_is_controller_only(name), !kinematic);
+        if (kinematic)
+            continue;
+        ++others;
+        char text[96];
+        snprintf(text, sizeof text, "# SI\n%s = 0.125  # any number\n", name);
+        const kin_param_values p = parse_ok(text);
+        assert_memory_equal(&p, &d, sizeof p); /* ignored: nothing changes */
+        snprintf(text, sizeof text, "L = 2\n%s = fast\n", name);
+        char want[96];
+        snprintf(want, sizeof want, "f.params:2: value of %s is not a finite number: 'fast'", name);
+        expect_error(text, want, NULL);
+        snprintf(text, sizeof text, "k1 = 0.3\n%s = nan\n", name);
+        expect_error(text, "f.params:2: value of", "not a finite number");
+        snprintf(text, sizeof text, "%s = 1\n\n%s = 1\n", name, name);
+        snprintf(want, sizeof want, "f.params:3: '%s' given twice (first on line 1)", name);
+        expect_error(text, want, NULL);
+    }
+    assert_true(others >= 20); /* steps_per_m, slide_vmax ... can_kbps */
+    /* A whole file of both kinds. */
+    const kin_param_values p =
+        parse_ok("L = 2\nslide_vmax = 0.15\nwatchdog_ms = 500\ncan_kbps = 500\nhome_sw_6 = 0.2\n");
+    assert_true(p.v[TSE_PARAM_L] == 2.0);
+    /* Names outside both tables, and the table's names in another case or with a unit suffix
+     * the scheme does not give them, are unknown. */
+    expect_error("slide_vmax_mm = 150\n", "f.params:1: unknown key 'slide_vmax_mm'", NULL);
+    expect_error("Watchdog_ms = 500\n", "f.params:1: unknown key 'Watchdog_ms'", NULL);
+    expect_error("L_mm = 1727\n", "f.params:1: unknown key 'L_mm'", NULL);
+    assert_false(kin_param_is_controller_only("L"));
+    assert_false(kin_param_is_controller_only("eta_deg"));
+    assert_false(kin_param_is_controller_only("bogus"));
+}
+
+static void test_bom(void **state)
+{
+    (void)state;
+    const kin_param_values p = parse_ok("\xEF\xBB\xBFL = 2.5\r\nk1 = 0.3\r\n");
+    assert_true(p.v[TSE_PARAM_L] == 2.5);
+    assert_int_equal(p.line[TSE_PARAM_L], 1);
+    assert_int_equal(p.line[TSE_PARAM_K1], 2);
+    /* Only at the start. */
+    expect_error("L = 2.5\n\xEF\xBB\xBFk1 = 0.3\n", "f.params:2: unknown key", NULL);
+}
+
+/* The template reads back to the defaults exactly, sets every key once in SI, and says units. */
+static void test_template(void **state)
+{
+    (void)state;
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    assert_non_null(f);
+    kin_params_write_template(f);
+    fclose(f);
+    kin_param_values d, p;
+    kin_params_default(&d);
+    kin_params_default(&p);
+    p.v[TSE_PARAM_L] = 3.0; /* so that reading the template must set it back */
+    char err[512] = "";
+    if (kin_params_parse(text, "template", &p, err, sizeof err) != KIN_PARAMS_OK)
+        fail_msg("the template is refused: %s", err);
+    for (int id = 1; id < TSE_PARAM_COUNT; ++id) {
+        if (p.v[id] != d.v[id])
+            fail_msg("%s reads back as %.17g, default %.17g", tse_param_name((tse_param_id)id), p.v[id], d.v[id]);
+        assert_true(p.line[id] > 0);   /* set by the template, not kept */
+        assert_int_equal(p.degrees[id], 0); /* in SI */
+    }
+    /* Every name of the controller's table, once, at the start of a line. */
+    for (int i = 0; i < FP_COUNT; ++i) {
+        char key[48];
+        snprintf(key, sizeof key, "\n%s = ", fw_param_table[i].name);
+        const char *at = strstr(text, key);
+        if (!at)
+            fail_msg("the template has no '%s'", key + 1);
+        assert_null(strstr(at + 1, key));
+    }
+    assert_null(strstr(text, "_deg = "));
+    /* Units in the comments: radians with degrees beside them, metres, the controller's in SI. */
+    assert_non_null(strstr(text, "\neta = 0.52359877559829"));
+    assert_non_null(strstr(text, "# rad (30 deg); "));
+    assert_non_null(strstr(text, "\nL = 1.727   # m; "));
+    assert_non_null(strstr(text, "\nk1 = 0.2647   # ratio; "));
+    assert_non_null(strstr(text, "\nslide_vmax = 0.15   # m/s; "));      /* 150000 um/s */
+    assert_non_null(strstr(text, "\nplate_wmax = 0.5   # rad/s; "));     /* 500000 urad/s */
+    assert_non_null(strstr(text, "\nwatchdog_ms = 500   # ms; "));
+    assert_non_null(strstr(text, "\nhome_sw_1 = 0.2   # m; "));          /* 200000 um */
+    assert_non_null(strstr(text, "range 0.001..2\n"));                   /* slide_vmax: 1000..2000000 um/s */
+    /* Every line fits the parser's line limit. */
+    for (const char *l = text; *l;) {
+        const char *nl = strchr(l, '\n');
+        assert_non_null(nl);
+        assert_true(nl - l < KIN_PARAMS_MAX_LINE);
+        l = nl + 1;
+    }
+    free(text);
 }
 
 static void test_comments_blanks_crlf_and_lines(void **state)
@@ -123,7 +258,8 @@ static void test_syntax_errors_name_the_line(void **state)
 {
     (void)state;
     expect_error("L = 1.7\nbogus = 3\n", "f.params:2: unknown key 'bogus'", NULL);
-    expect_error("eta = 30\n", "f.params:1: unknown key 'eta'", NULL); /* the file speaks degrees */
+    expect_error("eta_rad = 0.5\n", "f.params:1: unknown key 'eta_rad'", NULL);
+    expect_error("eta = 30\n", "f.params:1: eta = 30 is invalid (needs -pi/2 < eta < pi/2)", NULL); /* radians */
     expect_error("l = 1.7\n", "f.params:1: unknown key 'l'", NULL);    /* keys are case-sensitive */
     expect_error("alpha min_deg = 10\n", "f.params:1: unknown key", NULL);
     expect_error("= 3\n", "f.params:1: unknown key ''", NULL);
@@ -167,6 +303,11 @@ static void test_invalid_sets_name_the_line(void **state)
         {"k1 = 1.5", "k1"},
         {"eta_deg = 90", "eta_deg"},
         {"eta_deg = -90", "eta_deg"},
+        {"eta = 1.5708", "eta"}, /* just above pi/2 */
+        {"eta = -1.5708", "eta"},
+        {"alpha_min = 0", "alpha_min"},
+        {"alpha_max = 1.5708", "alpha_max"},
+        {"alpha_max = 0.1", "alpha_max"}, /* below the default alpha_min (0.1888 rad) */
         {"k3 = -0.01", "k3"},
         {"k4 = 0", "k4"},
         {"alpha_min_deg = 0", "alpha_min_deg"},
@@ -190,22 +331,37 @@ static void test_invalid_sets_name_the_line(void **state)
     /* The first key of the set that fails is named at the line that set it. */
     expect_error("s_max = 0.4\ns_min = 0.5\n", "f.params:1: s_max = 0.4 is invalid", NULL);
     expect_error("s_min = 0.5\ns_max = 0.4\n", "f.params:2: s_max = 0.4 is invalid", NULL);
-    /* A key the file did not set is called the default value. */
+    /* A key the file did not set is called the default value, by its SI name, angles also in
+     * degrees: asin(1.619 / 1.727) = 1.2152711 rad = 69.629907 deg. */
     expect_error("alpha_min_deg = 80 # above the prototype's alpha_max (69.6 deg)\n",
-                 "f.params: default value alpha_max_deg = ", "is invalid");
+                 "f.params: default value alpha_max = 1.2152711", "(69.629907");
+    expect_error("alpha_min = 1.4\n", "f.params: default value alpha_max = 1.2152711", "is invalid");
     expect_error("s_min = 1.2\n", "f.params: default value s_max = 0.9", "is invalid");
 }
 
+/* The SI key is the library's name; the angles, and only they, also have a _deg spelling. */
 static void test_keys_follow_the_library_names(void **state)
 {
     (void)state;
-    for (int id = 1; id < TSE_PARAM_COUNT; ++id) {
-        const char *lib = tse_param_name((tse_param_id)id), *key = kin_param_key((tse_param_id)id);
-        const int angle = id == TSE_PARAM_ETA || id == TSE_PARAM_ALPHA_MIN || id == TSE_PARAM_ALPHA_MAX;
+    const kin_param_key_def *keys;
+    const int n = kin_param_keys(&keys);
+    int si = 0, deg = 0;
+    for (int id = 1; id < TSE_PARAM_COUNT; ++id)
+        assert_string_equal(kin_param_key((tse_param_id)id), tse_param_name((tse_param_id)id));
+    for (int i = 0; i < n; ++i) {
+        const char *lib = tse_param_name(keys[i].id);
+        const int angle = keys[i].id == TSE_PARAM_ETA || keys[i].id == TSE_PARAM_ALPHA_MIN ||
+                          keys[i].id == TSE_PARAM_ALPHA_MAX;
         char want[32];
-        snprintf(want, sizeof want, "%s%s", lib, angle ? "_deg" : "");
-        assert_string_equal(key, want);
+        snprintf(want, sizeof want, "%s%s", lib, keys[i].degrees ? "_deg" : "");
+        assert_string_equal(keys[i].key, want);
+        assert_string_equal(keys[i].unit, keys[i].degrees ? "deg" : angle ? "rad" : keys[i].unit);
+        assert_true(!keys[i].degrees || angle);
+        si += !keys[i].degrees;
+        deg += keys[i].degrees;
     }
+    assert_int_equal(si, TSE_PARAM_COUNT - 1);
+    assert_int_equal(deg, 3);
 }
 
 static void test_describe_invalid(void **state)
@@ -217,6 +373,10 @@ static void test_describe_invalid(void **state)
     assert_contains(err, "d.params:2: eta_deg = 89.999999999 is invalid in float precision");
     kin_params_describe_invalid(&p, TSE_PARAM_K4, "d.params", "", err, sizeof err);
     assert_contains(err, "d.params: default value k4 = 0.11765 is invalid");
+    /* In the spelling the file used. */
+    p = parse_ok("eta = 1.5\n");
+    kin_params_describe_invalid(&p, TSE_PARAM_ETA, "d.params", " in float precision", err, sizeof err);
+    assert_contains(err, "d.params:1: eta = 1.5 is invalid in float precision (needs -pi/2 < eta < pi/2)");
 }
 
 static void test_stream_and_file(void **state)
@@ -272,6 +432,10 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_defaults_are_the_prototype),
         cmocka_unit_test(test_degrees_and_units),
+        cmocka_unit_test(test_both_spellings_of_one_parameter),
+        cmocka_unit_test(test_controller_names),
+        cmocka_unit_test(test_bom),
+        cmocka_unit_test(test_template),
         cmocka_unit_test(test_comments_blanks_crlf_and_lines),
         cmocka_unit_test(test_syntax_errors_name_the_line),
         cmocka_unit_test(test_value_errors_name_the_line),

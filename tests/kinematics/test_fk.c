@@ -277,6 +277,56 @@ static void test_fk_no_pose(void **state)
     }
 }
 
+/* Slides outside the stroke (kinematics.md: 0 <= s <= 0.90 m for the prototype): no valid pose
+ * has them, and FK says stroke, naming the scissor of the first such slide, before it solves
+ * anything, whether or not a pose would exist and with or without a seed. */
+static void test_fk_outside_stroke(void **state)
+{
+    (void)state;
+    tse_geometry g;
+    orc_geom og;
+    test_default_geometries(&g, &og);
+    const double worked = 0.43015083911167; /* all six slides at p = (0, 0, 1) */
+    const double outside[] = {0.901, 1.0, 5.0, -1e-3, -0.5};
+    for (int k = 0; k < 6; k++)
+        for (size_t b = 0; b < sizeof outside / sizeof outside[0]; b++)
+            for (int with_seed = 0; with_seed < 2; with_seed++) {
+                tse_real q[6];
+                for (int j = 0; j < 6; j++)
+                    q[j] = (tse_real)worked;
+                q[k] = (tse_real)outside[b];
+                tse_fk_result f;
+                EXPECT_STATUS(tse_fk(&g, q, with_seed ? g.home_pose : NULL, &f), TSE_STROKE);
+                EXPECT_STATUS(f.status, TSE_STROKE);
+                assert_int_equal(f.scissor, k / 2 + 1);
+            }
+    /* All six out: the first scissor is named. */
+    const tse_real all[6] = {TSE_R(1.0), TSE_R(1.0), TSE_R(1.0), TSE_R(1.0), TSE_R(1.0), TSE_R(1.0)};
+    tse_fk_result f;
+    EXPECT_STATUS(tse_fk(&g, all, NULL, &f), TSE_STROKE);
+    assert_int_equal(f.scissor, 1);
+    /* A real pose beyond a shortened stroke: the worked slides with s_max = 0.40 m (scissor 1 is
+     * the first), and within s_max = 0.45 m they solve to (0, 0, 1). */
+    tse_params p;
+    tse_params_default(&p);
+    p.s_max = TSE_R(0.40);
+    tse_geometry shorter;
+    assert_int_equal(tse_geometry_init(&shorter, &p), TSE_PARAM_OK);
+    tse_real q[6];
+    for (int j = 0; j < 6; j++)
+        q[j] = (tse_real)worked;
+    EXPECT_STATUS(tse_fk(&shorter, q, NULL, &f), TSE_STROKE);
+    assert_int_equal(f.scissor, 1);
+    p.s_max = TSE_R(0.45);
+    assert_int_equal(tse_geometry_init(&shorter, &p), TSE_PARAM_OK);
+    EXPECT_STATUS(tse_fk(&shorter, q, NULL, &f), TSE_OK);
+    EXPECT_NEAR(f.pose[TSE_Z], 1.0, IS_FLOAT ? 1e-4 : 1e-9);
+    /* Non-finite comes first: invalid, not stroke. */
+    q[0] = (tse_real)5.0;
+    q[5] = (tse_real)NAN;
+    EXPECT_STATUS(tse_fk(&g, q, NULL, &f), TSE_INVALID);
+}
+
 static void test_fk_invalid(void **state)
 {
     (void)state;
@@ -331,6 +381,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fk_invalid),
         cmocka_unit_test(test_fk_no_pose),
+        cmocka_unit_test(test_fk_outside_stroke),
         cmocka_unit_test(test_fk_of_ik_seeded),
         cmocka_unit_test(test_fk_of_ik_from_home),
         cmocka_unit_test(test_fk_never_wrong),
