@@ -1,16 +1,27 @@
 #!/usr/bin/env bash
-# tsectl's own contract, without a bus: usage errors exit 2 naming what is wrong, a bad trajectory
-# file is refused before the bus is touched (naming its line), no CAN interface exits 1.
+# tsectl's own contract, without a bus: help needs no bus (per command too), usage errors exit 2
+# naming what is wrong (and, for ranges, the unit and the range), a bad trajectory file is refused
+# before the bus is touched (naming FILE:LINE), no CAN interface exits 1, progress output in a log
+# is a few plain lines.
 set -u
 T=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 pass=0
 fail=0
-check() { local name=$1; shift; if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $name"; fi; }
+check() { local name=$1; shift; if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $name"; sed 's/^/  | /' "$tmp/e" 2>/dev/null | head -5; fi; }
 
-"$T" --help | grep -q "usage: tsectl"; check "--help prints usage" test $? -eq 0
-"$T" --iface x status >/dev/null 2>"$tmp/e"; check "missing --node exits 2" test $? -eq 2
+"$T" --help >"$tmp/e"; check "--help prints usage" grep -q "usage: tsectl" "$tmp/e"
+"$T" move --help >"$tmp/e" 2>&1; rc=$?
+check "move --help needs no bus (exit 0)" test $rc -eq 0
+check "move --help shows move's synopsis" grep -q "move X Y Z ROLL PITCH YAW" "$tmp/e"
+"$T" help trajectory >"$tmp/e" 2>&1
+check "trajectory help says what t is measured from" grep -q "t is measured from the moment the controller takes the first row" "$tmp/e"
+check "trajectory help says what the first row must satisfy" grep -q "the first row must start gently from rest" "$tmp/e"
+"$T" --iface x --node 1 params --help >"$tmp/e" 2>&1; check "params --help with options exits 0" test $? -eq 0
+"$T" --iface x status >/dev/null 2>"$tmp/e"; rc=$?
+check "missing --node exits 2" test $rc -eq 2
+check "missing --node is named" grep -q -- "--node N is needed" "$tmp/e"
 "$T" --iface x --node 16 status >/dev/null 2>"$tmp/e"; check "node 16 exits 2" test $? -eq 2
 "$T" --iface x --node 1 frobnicate >/dev/null 2>"$tmp/e"; rc=$?
 check "unknown command exits 2" test $rc -eq 2
@@ -18,18 +29,40 @@ check "unknown command is named" grep -q frobnicate "$tmp/e"
 printf 't,x,y,z,roll,pitch,yaw\n0.1,0,0,1,0,0,0\n0.2,0,0,1,0,0\n' >"$tmp/short.csv"
 "$T" --iface nosuchcan0 --node 1 trajectory "$tmp/short.csv" >/dev/null 2>"$tmp/e"; rc=$?
 check "a short row exits 2 before the bus" test $rc -eq 2
-check "the short row's line is named" grep -q "short.csv:3: expected 7 fields" "$tmp/e"
+check "the short row's line is named" grep -q "short.csv:3:" "$tmp/e"
+printf '0.1,0,0,1,0,0,0\n0.2,0,0,,1,0,0\n' >"$tmp/shift.csv"
+"$T" --iface nosuchcan0 --node 1 trajectory "$tmp/shift.csv" >/dev/null 2>"$tmp/e"; rc=$?
+check "an empty field (columns that would shift) exits 2" test $rc -eq 2
+check "the empty field's line is named" grep -q "shift.csv:2:" "$tmp/e"
+printf '0.1,0,0,1,0,0,0\n0.2,4.5,0,1,0,0,0\n' >"$tmp/far.csv"
+"$T" --iface nosuchcan0 --node 1 trajectory "$tmp/far.csv" >/dev/null 2>"$tmp/e"; rc=$?
+check "a pose past the wire's range exits 2 before the bus" test $rc -eq 2
+check "the far row's line is named" grep -q "far.csv:2:" "$tmp/e"
 printf '0.2,0,0,1,0,0,0\n0.1,0,0,1,0,0,0\n' >"$tmp/back.csv"
 "$T" --iface nosuchcan0 --node 1 trajectory "$tmp/back.csv" >/dev/null 2>"$tmp/e"
-check "time going back is refused with its line" grep -q "back.csv:2: t must increase" "$tmp/e"
+check "time going back is refused with its line" grep -q "back.csv:2:" "$tmp/e"
 printf '0.1,0,0,1,0,zero,0\n' >"$tmp/nan.csv"
 "$T" --iface nosuchcan0 --node 1 trajectory "$tmp/nan.csv" >/dev/null 2>"$tmp/e"
-check "a non-number is refused with its line and field" grep -q "nan.csv:1: field 6 'zero' is not a number" "$tmp/e"
+check "a non-number is refused with its line" grep -q "nan.csv:1:" "$tmp/e"
 "$T" --iface nosuchcan0 --node 1 move 0 0 1 0 0 >/dev/null 2>"$tmp/e"; check "move with five numbers exits 2" test $? -eq 2
-"$T" --iface nosuchcan0 --node 1 move 0 0 1 0 0 x >/dev/null 2>"$tmp/e"; check "move with a non-number exits 2" test $? -eq 2
+"$T" --iface nosuchcan0 --node 1 move 0 0 1 0 0 x >/dev/null 2>"$tmp/e"; rc=$?
+check "move with a non-number exits 2" test $rc -eq 2
+check "the non-number's axis is named" grep -q "YAW is not a number" "$tmp/e"
+"$T" --iface nosuchcan0 --node 1 move 0 0 5 0 0 0 >/dev/null 2>"$tmp/e"; rc=$?
+check "move past the wire's range exits 2 naming the unit" grep -q "Z is outside the wire's range -4..4 m" "$tmp/e"
+"$T" --iface nosuchcan0 --node 1 params set slide_vmax 3 >/dev/null 2>"$tmp/e"; rc=$?
+check "params set out of range exits 2" test $rc -eq 2
+check "the range error prints the unit and the range" grep -q "m/s" "$tmp/e"
+"$T" --iface nosuchcan0 --node 1 params set slide_vmax 0.2 >/dev/null 2>"$tmp/e"; rc=$?
+check "params set in SI passes the check and reaches the bus (exit 1 here)" test $rc -eq 1
+"$T" --iface nosuchcan0 --node 1 params set eta_deg 30 >/dev/null 2>"$tmp/e"; rc=$?
+check "an angle in degrees is taken" test $rc -eq 1
+"$T" --iface nosuchcan0 --node 1 params set nosuch 1 >/dev/null 2>"$tmp/e"; rc=$?
+check "an unknown parameter exits 2 naming it" grep -q "nosuch" "$tmp/e"
 "$T" --iface nosuchcan0 --node 1 status >/dev/null 2>"$tmp/e"; rc=$?
 check "no such CAN interface exits 1" test $rc -eq 1
 check "the interface is named" grep -q nosuchcan0 "$tmp/e"
-"$T" --iface x --node 1 params list | grep -q "steps_per_m"; check "params list needs no bus" test $? -eq 0
+"$T" params list >"$tmp/e"; check "params list needs no bus" grep -q "steps_per_m" "$tmp/e"
+check "params list shows SI units" grep -Eq "^slide_vmax +0.15 +m/s" "$tmp/e"
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -7,11 +7,21 @@ T="tsectl --iface vcan0 --node 1 --timeout 5000"
 
 candump -L vcan0 >dump.log &
 dump=$!
-tse-sim --iface vcan0 --node 1 >sim.log 2>&1 &
+# The simulator's parameters: an SI text file it reads at start and PARAM_SAVE writes.
+printf '# a user-written file\nslide_vmax = 0.14   # m/s\n' >params.txt
+tse-sim --iface vcan0 --node 1 --params params.txt >sim.log 2>&1 &
 sim=$!
 sleep 0.5
 tsectl --iface vcan0 --node 1 heartbeat &
 hb=$!
+
+$T params get slide_vmax >out.txt 2>&1
+check "the simulator took its SI parameter file (slide_vmax = 0.14 m/s)" "grep -q 'slide_vmax = 0.14 m/s' out.txt"
+$T params set plate_vmax 0.25 >/dev/null 2>&1 && $T params save >out.txt 2>&1; rc=$?
+check "PARAM_SAVE writes the file back as text, with the new value and the old" \
+  "[ $rc -eq 0 ] && grep -q '^plate_vmax *= *0.25' params.txt && grep -q '^slide_vmax *= *0.14' params.txt"
+$T status >out.txt 2>&1
+check "status before homing says the pose is unknown" "grep -q 'pose unknown (not homed)' out.txt"
 
 $T enable >out.txt 2>&1; check "enable acknowledged" "[ $? -eq 0 ]"
 $T home --wait >out.txt 2>&1; rc=$?; check "homing ends at rest" "[ $rc -eq 0 ]"
@@ -44,6 +54,40 @@ $T trajectory traj.csv >traj_out.txt 2>&1; rc=$?
 t1=$(date +%s)
 check "trajectory streamed and finished at rest" "[ $rc -eq 0 ]"
 check "trajectory ends on its last point" "near 0.03 0.02 1.45 0 0 0"
+check "progress in a log: a few plain lines, no carriage returns" \
+  "! grep -q \"\$(printf '\\r')\" traj_out.txt && [ \$(wc -l <traj_out.txt) -le 15 ]"
+$T status >out.txt 2>&1
+check "status shows the plate pose" "grep -q '^pose 0.0[23][09]' out.txt"
+
+# A file the controller would refuse is refused before anything is sent, naming its row.
+before=$(grep -c 'motion accepted' sim.log)
+printf 't,x,y,z,roll,pitch,yaw\n0.2,0.06,0.02,1.45,0,0,0\n1.0,0.06,0.02,1.45,0,0,0\n' >jump.csv
+$T trajectory jump.csv >out.txt 2>&1; rc=$?
+check "a jump from rest is refused before sending (exit 3, jump.csv:2, timing)" \
+  "[ $rc -eq 3 ] && grep -q 'jump.csv:2: row 1' out.txt && grep -q 'timing' out.txt && grep -q 'nothing was sent' out.txt"
+check "no motion for the refused file" "[ $(grep -c 'motion accepted' sim.log) -eq $before ]"
+
+# A STOP while streaming: the streamer stops the robot, waits for rest and exits 3 naming its row;
+# the controller's queue is empty at rest.
+# (A second's hold first, and 40 ms rows: streaming under QEMU's TCG sends about 35 rows/s.)
+awk 'BEGIN { print "t,x,y,z,roll,pitch,yaw"; print "1.0,0.03,0.02,1.45,0,0,0"; n = 150;
+      for (i = 1; i <= n; ++i) { s = i / n; e = s*s*s*(10 - 15*s + 6*s*s);
+      printf "%.3f,%.6f,%.6f,1.45,0,0,0\n", 1.0 + 0.04 * i, 0.03 - 0.05 * e, 0.02 }}' >long.csv
+$T trajectory long.csv >long_out.txt 2>&1 &
+streamer=$!
+sleep 4
+$T stop >out.txt 2>&1
+wait $streamer; rc=$?
+sed 's/^/  | /' long_out.txt
+check "a STOP while streaming: the streamer exits 3 naming a row of long.csv" "[ $rc -eq 3 ] && grep -q 'row [0-9]' long_out.txt"
+$T status >out.txt 2>&1
+sed -n 's/^/  | /;1p' out.txt
+check "after the STOP the controller is idle with an empty queue (free 32)" "grep -q 'state idle.*queue 0 (free 32)' out.txt"
+$T move 0.03 0.02 1.45 0 0 0 --duration 1 --wait >/dev/null 2>&1
+awk 'BEGIN { n = 75; for (i = 1; i <= n; ++i) { s = i / n; e = s*s*s*(10 - 15*s + 6*s*s);
+      printf "%.3f,%.6f,0.02,1.45,0,0,0\n", 0.02 * i, 0.03 - 0.03 * e }}' >again.csv
+$T trajectory again.csv >out.txt 2>&1; rc=$?
+check "a new trajectory after the STOP is taken and runs to its end" "[ $rc -eq 0 ] && near 0 0.02 1.45 0 0 0"
 
 # E-stop during a move: stepping ends within one control tick (1 ms).
 $T move 0 0 1.0 0 0 0 --duration 3 >out.txt 2>&1
@@ -55,13 +99,22 @@ check "stepping ended within one control tick of the e-stop" \
   "grep 'e-stop taken' sim.log | tail -1 | awk '{ exit !(\$(NF-3) <= 1.0) }' && ! grep -q 'step .* after the e-stop' sim.log"
 
 # Host silence during a move: a controlled stop and a latched watchdog fault.
-$T clear >/dev/null 2>&1; $T enable >/dev/null 2>&1; $T home --wait >/dev/null 2>&1
+$T clear >/dev/null 2>&1; $T enable >/dev/null 2>&1
+$T home --wait >home1.txt 2>&1 &
+first=$!
+sleep 0.3
+$T home --wait >out.txt 2>&1; rc=$?
+wait $first
+check "home --wait during a homing already running waits for it (exit 0)" \
+  "[ $rc -eq 0 ] && grep -q 'already running' out.txt && grep -q 'at rest' out.txt"
 $T move 0.05 0 1.2 0 0 0 --duration 3 >out.txt 2>&1
 sleep 0.5
 kill $hb
 sleep 2
 check "host heartbeat lost: watchdog fault latched" "grep -q 'fault watchdog' sim.log"
 check "the plant saw no physical breach all along" "! grep -q 'plant:' sim.log"
+check "no step reported after the e-stop: none before its clearing, and the motion after it is not one" \
+  "! grep -q 'after the e-stop' sim.log && [ \$(grep -c 'motion accepted' sim.log) -gt 6 ]"
 
 kill -INT $sim
 sleep 0.5

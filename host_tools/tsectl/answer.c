@@ -1,0 +1,145 @@
+#define _POSIX_C_SOURCE 200809L
+/* The exchanges every command is made of.  See tsectl.h. */
+#include <math.h>
+#include <stdio.h>
+
+#include "progress.h"
+#include "reject_text.h"
+#include "tsectl.h"
+
+volatile sig_atomic_t tsectl_interrupted;
+int tsectl_timeout_ms = 2000;
+
+void ctl_error(const char *fmt, ...)
+{
+    progress_break();
+    fflush(stdout);
+    va_list ap;
+    va_start(ap, fmt);
+    fputs("tsectl: ", stderr);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+int ctl_status(tlink *l, proto_message *status)
+{
+    proto_message m;
+    const uint64_t end = link_now_us() + (uint64_t)tsectl_timeout_ms * 1000u;
+    while (link_now_us() < end && !tsectl_interrupted) {
+        if (link_recv(l, &m, 100) == 1 && m.msg == PM_STATUS) {
+            if (status)
+                *status = m;
+            return (uint8_t)(m.v[5] + 1);
+        }
+    }
+    return -1;
+}
+
+int ctl_answer(tlink *l, int function, int seq, proto_message *ack, proto_message *reject)
+{
+    const uint64_t end = link_now_us() + (uint64_t)tsectl_timeout_ms * 1000u;
+    proto_message m;
+    while (link_now_us() < end) {
+        if (tsectl_interrupted)
+            return EXIT_INTERRUPTED;
+        if (link_recv(l, &m, 50) != 1)
+            continue;
+        if ((m.msg == PM_ACK || m.msg == PM_REJECT) && m.v[0] == function && (seq < 0 || m.v[1] == seq)) {
+            if (m.msg == PM_REJECT) {
+                if (reject)
+                    *reject = m;
+                return EXIT_REJECTED;
+            }
+            if (ack)
+                *ack = m;
+            return EXIT_OK;
+        }
+    }
+    ctl_error("no answer from node %u within %d ms (is it on the bus? --timeout MS waits longer)", l->node,
+              tsectl_timeout_ms);
+    return EXIT_TIMEOUT;
+}
+
+void ctl_print_reject(const proto_message *reject)
+{
+    char text[512];
+    ctl_error("%s", reject_text(reject, text, sizeof text));
+}
+
+int ctl_simple(tlink *l, proto_msg msg, proto_message *reject)
+{
+    const int seq = ctl_status(l, NULL);
+    if (seq < 0) {
+        ctl_error("no STATUS from node %u within %d ms (is it on the bus?)", l->node, tsectl_timeout_ms);
+        return tsectl_interrupted ? EXIT_INTERRUPTED : EXIT_TIMEOUT;
+    }
+    const int32_t v[1] = {seq};
+    if (link_send(l, msg, v) != 0) {
+        ctl_error("cannot send on the bus");
+        return EXIT_BUS;
+    }
+    proto_message rej;
+    const int rc = ctl_answer(l, proto_table[msg].function, seq, NULL, &rej);
+    if (rc == EXIT_OK)
+        printf("%s: acknowledged\n", proto_table[msg].name);
+    if (rc == EXIT_REJECTED) {
+        if (reject)
+            *reject = rej;
+        else
+            ctl_print_reject(&rej);
+    }
+    return rc;
+}
+
+static int at_rest(int st)
+{
+    return st == FW_STATE_IDLE || st == FW_STATE_DISABLED || st == FW_STATE_FAULT || st == FW_STATE_ESTOP;
+}
+
+int ctl_wait_rest(tlink *l, double expected_s, const char *what, int show_progress, proto_message *last)
+{
+    const uint64_t t0 = link_now_us();
+    /* Bounded: three times what was planned plus a minute (homing has no plan). */
+    const double limit = 3.0 * (expected_s > 0 ? expected_s : 60.0) + 60.0;
+    proto_message m;
+    int seen_motion = 0;
+    progress p;
+    progress_start(&p, what, -1);
+    for (;;) {
+        const double el = (double)(link_now_us() - t0) * 1e-6;
+        if (tsectl_interrupted)
+            return EXIT_INTERRUPTED;
+        if (el > limit) {
+            ctl_error("%s did not come to rest within %.0f s", what, limit);
+            return EXIT_TIMEOUT;
+        }
+        if (link_recv(l, &m, 200) != 1 || m.msg != PM_STATUS)
+            continue;
+        const int st = m.v[0];
+        if (last)
+            *last = m;
+        if (!at_rest(st))
+            seen_motion = 1;
+        if (show_progress)
+            progress_update(&p, expected_s > 0 ? fmin(el / expected_s, 0.99) : fmin(el / (el + 5.0), 0.99), NULL);
+        if (seen_motion && at_rest(st)) {
+            const int ok = st == FW_STATE_IDLE && m.v[1] == FW_FAULT_NONE;
+            if (show_progress && ok)
+                progress_update(&p, 1.0, NULL);
+            progress_break();
+            if (ok) {
+                printf("%s: at rest after %.2f s\n", what, el);
+                return EXIT_OK;
+            }
+            ctl_error("%s ended %s after %.2f s, fault %s", what, proto_enum_name(proto_state_names, st), el,
+                      proto_enum_name(proto_fault_names, m.v[1]));
+            return EXIT_REJECTED;
+        }
+        if (!seen_motion && el > 2.0 && at_rest(st)) {
+            progress_break();
+            printf("%s: already at rest\n", what);
+            return st == FW_STATE_FAULT || st == FW_STATE_ESTOP ? EXIT_REJECTED : EXIT_OK;
+        }
+    }
+}

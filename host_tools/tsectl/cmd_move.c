@@ -1,0 +1,101 @@
+/* move X Y Z ROLL PITCH YAW [--duration S | --speed V] [--wait] */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+
+typedef struct {
+    double p[6];
+    int kind, wait;
+    int32_t raw; /* ms or um/s, as MOVE_COMMIT carries it */
+} move_args;
+
+static const char *const axis[6] = {"X", "Y", "Z", "ROLL", "PITCH", "YAW"};
+
+/* Checks a move's arguments; nothing is sent for a bad one. */
+static int parse_move(int argc, char **argv, move_args *a)
+{
+    double value = 2.0;
+    a->kind = 0;
+    a->wait = 0;
+    int npos = 0;
+    for (int i = 0; i < argc; ++i) {
+        if (!strcmp(argv[i], "--wait")) {
+            a->wait = 1;
+        } else if (!strcmp(argv[i], "--duration") || !strcmp(argv[i], "--speed")) {
+            a->kind = argv[i][2] == 's';
+            if (i + 1 >= argc)
+                return usage_error("move", a->kind ? "--speed needs a plate speed in m/s" : "--duration needs seconds", NULL);
+            if (parse_number(argv[++i], &value) != 0 || !(value > 0))
+                return usage_error("move", a->kind ? "--speed takes a positive speed in m/s" : "--duration takes positive seconds",
+                                   argv[i]);
+        } else if (npos < 6) {
+            if (parse_number(argv[i], &a->p[npos]) != 0) {
+                char what[64];
+                snprintf(what, sizeof what, "%s is not a number", axis[npos]);
+                return usage_error("move", what, argv[i]);
+            }
+            const double lim = npos < 3 ? 4.0 : 3.141593;
+            if (fabs(a->p[npos]) > lim) {
+                char what[96];
+                snprintf(what, sizeof what, "%s is outside the wire's range -%g..%g %s", axis[npos], lim, lim,
+                         npos < 3 ? "m" : "rad");
+                return usage_error("move", what, argv[i]);
+            }
+            ++npos;
+        } else {
+            return usage_error("move", "unexpected argument", argv[i]);
+        }
+    }
+    if (npos < 6)
+        return usage_error("move", "needs X Y Z (m) ROLL PITCH YAW (rad)", NULL);
+    const double raw = a->kind ? value * 1e6 : value * 1e3;
+    if (!(raw >= 1 && raw <= 3600000)) {
+        char v[32];
+        snprintf(v, sizeof v, "%g", value);
+        return usage_error("move", a->kind ? "--speed must be 1e-6 to 3.6 m/s" : "--duration must be 0.001 to 3600 s", v);
+    }
+    a->raw = (int32_t)lround(raw);
+    return EXIT_OK;
+}
+
+int check_move(int argc, char **argv, int *done)
+{
+    (void)done;
+    move_args a;
+    return parse_move(argc, argv, &a);
+}
+
+int run_move(tlink *l, int argc, char **argv)
+{
+    move_args a;
+    if (parse_move(argc, argv, &a) != EXIT_OK)
+        return EXIT_USAGE;
+    const int seq = ctl_status(l, NULL);
+    if (seq < 0) {
+        ctl_error("no STATUS from node %u within %d ms (is it on the bus?)", l->node, tsectl_timeout_ms);
+        return EXIT_TIMEOUT;
+    }
+    int32_t pose[3][3];
+    for (int k = 0; k < 3; ++k) {
+        pose[k][0] = seq;
+        pose[k][1] = (int32_t)lround(a.p[2 * k] * 1e6);
+        pose[k][2] = (int32_t)lround(a.p[2 * k + 1] * 1e6);
+    }
+    const int32_t commit[3] = {seq, a.kind, a.raw};
+    if (link_send(l, PM_POSE_A, pose[0]) || link_send(l, PM_POSE_B, pose[1]) || link_send(l, PM_POSE_C, pose[2]) ||
+        link_send(l, PM_MOVE_COMMIT, commit)) {
+        ctl_error("cannot send on the bus");
+        return EXIT_BUS;
+    }
+    proto_message ack, rej;
+    const int rc = ctl_answer(l, proto_table[PM_MOVE_COMMIT].function, seq, &ack, &rej);
+    if (rc == EXIT_REJECTED)
+        ctl_print_reject(&rej);
+    if (rc != EXIT_OK)
+        return rc;
+    const double T = ack.v[4] * 1e-3;
+    printf("move accepted: %.3f s planned\n", T);
+    return a.wait ? ctl_wait_rest(l, T, "moving", 1, NULL) : EXIT_OK;
+}

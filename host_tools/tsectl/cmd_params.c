@@ -1,0 +1,155 @@
+/* params list | get NAME | set NAME VALUE | dump | save, in SI units (the wire stays integer). */
+#include <stdio.h>
+#include <string.h>
+
+#include "commands.h"
+#include "ctl_params.h"
+#include "param_text.h"
+
+static void print_value(const char *prefix, int id, int32_t raw)
+{
+    param_key k;
+    param_si_key(id, &k);
+    char v[64];
+    printf("%s%s = %s%s%s\n", prefix, fw_param_table[id].name, param_to_text(&k, raw, v, sizeof v), *k.unit ? " " : "",
+           k.unit);
+}
+
+static void list(void)
+{
+    printf("%-15s %-12s %-9s %-26s %s\n", "name", "default", "unit", "range", "meaning");
+    for (int id = 0; id < FP_COUNT; ++id) {
+        param_key k;
+        param_si_key(id, &k);
+        char d[48], lo[48], hi[48], range[100];
+        param_to_text(&k, fw_param_table[id].def, d, sizeof d);
+        snprintf(range, sizeof range, "%s..%s", param_to_text(&k, fw_param_table[id].min, lo, sizeof lo),
+                 param_to_text(&k, fw_param_table[id].max, hi, sizeof hi));
+        printf("%-15s %-12s %-9s %-26s %s\n", fw_param_table[id].name, d, *k.unit ? k.unit : "-", range,
+               fw_param_table[id].doc);
+    }
+    printf("\nValues are in SI (m, rad, m/s, ratios) unless the name carries its unit (_ms, _ns, _kbps);\n"
+           "angles may also be given in degrees as NAME_deg (e.g. 'params set eta_deg 30').\n");
+}
+
+/* Checks NAME and VALUE of a set before anything is sent. */
+static int parse_set(char **argv, param_key *k, int32_t *raw)
+{
+    if (param_lookup(argv[1], k) != 0)
+        return usage_error("params", "unknown parameter (see 'tsectl params list')", argv[1]);
+    char err[256];
+    if (param_from_text(k, argv[2], raw, err, sizeof err) != 0)
+        return usage_error("params", err, NULL);
+    return EXIT_OK;
+}
+
+int check_params(int argc, char **argv, int *done)
+{
+    if (argc < 1)
+        return usage_error("params", "needs list, get NAME, set NAME VALUE, dump or save", NULL);
+    const char *sub = argv[0];
+    param_key k;
+    if (!strcmp(sub, "list")) {
+        if (argc > 1)
+            return usage_error("params", "unexpected argument", argv[1]);
+        list();
+        *done = 1;
+        return EXIT_OK;
+    }
+    if (!strcmp(sub, "save") || !strcmp(sub, "dump"))
+        return argc > 1 ? usage_error("params", "unexpected argument", argv[1]) : EXIT_OK;
+    if (!strcmp(sub, "get")) {
+        if (argc != 2)
+            return usage_error("params", "get takes one NAME", argc > 2 ? argv[2] : NULL);
+        return param_lookup(argv[1], &k) == 0 ? EXIT_OK
+                                               : usage_error("params", "unknown parameter (see 'tsectl params list')", argv[1]);
+    }
+    if (!strcmp(sub, "set")) {
+        if (argc != 3)
+            return usage_error("params", "set takes NAME VALUE", argc > 3 ? argv[3] : NULL);
+        int32_t raw;
+        return parse_set(argv, &k, &raw);
+    }
+    return usage_error("params", "unknown subcommand", sub);
+}
+
+/* A PARAM_SET refused for the whole set: say which rule, with the controller's other values. */
+static void explain_set(tlink *l, int id, int32_t raw)
+{
+    fw_param_set s;
+    if (ctl_params_read(l, &s) != EXIT_OK)
+        return;
+    s.v[id] = raw;
+    char why[512];
+    param_explain_invalid(&s, why, sizeof why);
+    ctl_error("why: %s", why);
+}
+
+int run_params(tlink *l, int argc, char **argv)
+{
+    (void)argc;
+    const char *sub = argv[0];
+    if (!strcmp(sub, "save")) {
+        const int32_t v[1] = {0x45564153}; /* "SAVE" */
+        if (link_send(l, PM_PARAM_SAVE, v) != 0) {
+            ctl_error("cannot send on the bus");
+            return EXIT_BUS;
+        }
+        proto_message rej;
+        const int rc = ctl_answer(l, proto_table[PM_PARAM_SAVE].function, -1, NULL, &rej);
+        if (rc == EXIT_REJECTED)
+            ctl_print_reject(&rej);
+        if (rc == EXIT_OK)
+            printf("parameters saved\n");
+        return rc;
+    }
+    if (!strcmp(sub, "dump")) {
+        fw_param_set s;
+        const int rc = ctl_params_read(l, &s);
+        if (rc != EXIT_OK)
+            return rc;
+        printf("# parameters of node %u (SI units; tse-sim --params and tse-kin --params read this format)\n", l->node);
+        for (int id = 0; id < FP_COUNT; ++id)
+            print_value("", id, s.v[id]);
+        return EXIT_OK;
+    }
+    param_key k;
+    if (!strcmp(sub, "get")) {
+        param_lookup(argv[1], &k);
+        int32_t raw;
+        const int rc = ctl_param_get(l, k.id, &raw);
+        if (rc == EXIT_OK) {
+            char v[64];
+            printf("%s = %s%s%s\n", argv[1], param_to_text(&k, raw, v, sizeof v), *k.unit ? " " : "", k.unit);
+        }
+        return rc;
+    }
+    int32_t raw;
+    if (parse_set(argv, &k, &raw) != EXIT_OK)
+        return EXIT_USAGE;
+    const int32_t v[2] = {k.id, raw};
+    if (link_send(l, PM_PARAM_SET, v) != 0) {
+        ctl_error("cannot send on the bus");
+        return EXIT_BUS;
+    }
+    proto_message rej;
+    const int rc = ctl_answer(l, proto_table[PM_PARAM_SET].function, -1, NULL, &rej);
+    if (rc == EXIT_REJECTED) {
+        ctl_print_reject(&rej);
+        if (rej.v[2] == FW_REASON_PARAM_SET)
+            explain_set(l, k.id, raw);
+        return rc;
+    }
+    if (rc != EXIT_OK)
+        return rc;
+    proto_message m;
+    const uint64_t end = link_now_us() + (uint64_t)tsectl_timeout_ms * 1000u;
+    while (link_now_us() < end)
+        if (link_recv(l, &m, 50) == 1 && m.msg == PM_PARAM_VALUE && m.v[0] == k.id) {
+            char t[64];
+            printf("%s = %s%s%s\n", argv[1], param_to_text(&k, m.v[1], t, sizeof t), *k.unit ? " " : "", k.unit);
+            return EXIT_OK;
+        }
+    ctl_error("no PARAM_VALUE after the set was acknowledged");
+    return EXIT_TIMEOUT;
+}

@@ -1,0 +1,14 @@
+/* The controller's parameter set, read over the bus one PARAM_GET at a time. */
+#ifndef TSECTL_CTL_PARAMS_H
+#define TSECTL_CTL_PARAMS_H
+
+#include "fw/params.h"
+#include "tsectl.h"
+
+/* Reads parameter id.  Returns EXIT_OK with *value, or an exit status (a reject is printed). */
+int ctl_param_get(tlink *l, int id, int32_t *value);
+
+/* Reads the whole set.  Returns EXIT_OK or an exit status. */
+int ctl_params_read(tlink *l, fw_param_set *s);
+
+#endif

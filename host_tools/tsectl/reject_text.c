@@ -1,0 +1,148 @@
+#include "reject_text.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "fw/params.h"
+
+const char *reject_slide_name(int slide)
+{
+    static const char *const names[6] = {"A1", "B1", "A2", "B2", "A3", "B3"};
+    return slide >= 1 && slide <= 6 ? names[slide - 1] : "?";
+}
+
+static const char *command_name(int function)
+{
+    const proto_def *d = proto_lookup((uint8_t)function, PROTO_TO_CONTROLLER);
+    return d ? d->name : "?";
+}
+
+/* What to do when a command meets a state that does not take it. */
+static const char *state_advice(int function, int state)
+{
+    const proto_def *d = proto_lookup((uint8_t)function, PROTO_TO_CONTROLLER);
+    const proto_msg m = d ? d->msg : PM_COUNT;
+    if (state == FW_STATE_FAULT || state == FW_STATE_ESTOP) {
+        if (m == PM_CLEAR_FAULT)
+            return "the e-stop input is open: close it, then clear";
+        return "clear it first ('tsectl clear'), then enable and home";
+    }
+    switch (m) {
+    case PM_HOME:
+        if (state == FW_STATE_HOMING)
+            return "homing is already running: wait for it ('tsectl home --wait' waits)";
+        if (state == FW_STATE_DISABLED)
+            return "enable the drives first ('tsectl enable')";
+        return "wait until the motion ends, or stop it ('tsectl stop')";
+    case PM_ENABLE:
+        return state == FW_STATE_DISABLED ? "try again" : "the drives are already enabled";
+    case PM_DISABLE:
+        return "stop the motion first ('tsectl stop'), then disable";
+    case PM_CLEAR_FAULT:
+        return "there is no fault to clear";
+    case PM_MOVE_COMMIT:
+    case PM_TRAJ_COMMIT:
+        if (state == FW_STATE_DISABLED)
+            return "enable and home first ('tsectl enable', 'tsectl home --wait')";
+        if (state == FW_STATE_HOMING)
+            return "wait for homing to end ('tsectl home --wait')";
+        if (state == FW_STATE_STOPPING)
+            return "the controller is bringing the robot to rest (a STOP, a fault or the host falling "
+                   "behind ended the motion): wait until it is idle, then start again";
+        return "another motion is running or stopping: wait for it to end, or stop it "
+               "('tsectl stop'); this controller does not queue a move behind a running one";
+    case PM_PARAM_SET:
+    case PM_PARAM_SAVE:
+        return "parameters change only while disabled or in fault: stop, then 'tsectl disable'";
+    default:
+        return "see 'tsectl --help' for what each state accepts";
+    }
+}
+
+const char *reject_text(const proto_message *r, char *buf, size_t cap)
+{
+    const int function = r->v[0], reason = r->v[2], scissor = r->v[3], kin = r->v[4], field = r->v[5],
+              where = r->v[6];
+    const char *rn = proto_enum_name(proto_reason_names, reason);
+    const char *cmd = command_name(function);
+    switch (reason) {
+    case FW_REASON_KINEMATICS:
+        snprintf(buf, cap,
+                 "rejected: kinematics: %s: scissor %d is %s at %.1f%% of the path (the pose, or the "
+                 "path to it, leaves the workspace with its margins; 'tse-kin ik' shows the pose's status)",
+                 cmd, scissor, proto_enum_name(proto_kin_status_names, kin), where / 10.0);
+        break;
+    case FW_REASON_TIMING: {
+        const int accel = (field & 16) != 0, slide = field & 15;
+        const double ratio = where / 1000.0;
+        if (accel)
+            snprintf(buf, cap,
+                     "rejected: timing: %s: slide %s (scissor %d) would need %.2f times its acceleration "
+                     "limit (slide_amax): the speed changes too abruptly here. Between points the plate "
+                     "moves at constant speed, so every change of speed at a point must be small: ease "
+                     "in and out, sample a smooth path (10-50 ms apart), and start at rest where the "
+                     "plate is",
+                     cmd, reject_slide_name(slide), scissor, ratio);
+        else
+            snprintf(buf, cap,
+                     "rejected: timing: %s: slide %s (scissor %d) would need %.2f times its speed limit "
+                     "(slide_vmax): give this point at least %d%% more time from the previous one",
+                     cmd, reject_slide_name(slide), scissor, ratio, where > 1000 ? (where - 1000 + 9) / 10 : 1);
+        break;
+    }
+    case FW_REASON_STATE:
+        snprintf(buf, cap, "rejected: state: %s is not taken while the controller is %s: %s", cmd,
+                 proto_enum_name(proto_state_names, field), state_advice(function, field));
+        break;
+    case FW_REASON_NOT_HOMED:
+        snprintf(buf, cap, "rejected: not_homed: %s: the slides have no zero yet: home first ('tsectl home --wait')",
+                 cmd);
+        break;
+    case FW_REASON_RANGE: {
+        const proto_def *d = proto_lookup((uint8_t)function, PROTO_TO_CONTROLLER);
+        if (d && field < d->nfields)
+            snprintf(buf, cap, "rejected: range: %s.%s is outside [%ld, %ld] (raw units)", cmd, d->fields[field].name,
+                     (long)d->fields[field].min, (long)d->fields[field].max);
+        else
+            snprintf(buf, cap, "rejected: range: %s: field %d is outside its range", cmd, field);
+        break;
+    }
+    case FW_REASON_PARAM_UNKNOWN:
+        snprintf(buf, cap, "rejected: param_unknown: this controller has no parameter %d (firmware older than tsectl?)",
+                 field);
+        break;
+    case FW_REASON_PARAM_RANGE:
+        snprintf(buf, cap, "rejected: param_range: %s is outside its range (see 'tsectl params list')",
+                 field < FP_COUNT ? fw_param_table[field].name : "the parameter");
+        break;
+    case FW_REASON_PARAM_SET:
+        snprintf(buf, cap,
+                 "rejected: param_set: %s: the value is in range but the whole set it gives is not valid "
+                 "(geometry, stroke, homing switches or step timing); nothing was changed",
+                 field < FP_COUNT ? fw_param_table[field].name : "the parameter");
+        break;
+    case FW_REASON_STORAGE:
+        snprintf(buf, cap,
+                 "rejected: storage: the controller could not write its parameter store (on the board a "
+                 "flash erase or write failed; in tse-sim, no --params FILE or the file could not be "
+                 "written): nothing was saved, the running parameters are unchanged but are lost at "
+                 "power-off");
+        break;
+    case FW_REASON_QUEUE_FULL:
+        snprintf(buf, cap, "rejected: queue_full: %s: the trajectory queue is full (send when STATUS shows room)", cmd);
+        break;
+    case FW_REASON_STALE:
+        snprintf(buf, cap,
+                 "rejected: stale: %s: its sequence number is not newer than the last accepted (another "
+                 "host commanding this node?)",
+                 cmd);
+        break;
+    case FW_REASON_INCOMPLETE:
+        snprintf(buf, cap, "rejected: incomplete: %s: a part of its pose did not arrive (frames lost on the bus?)", cmd);
+        break;
+    default:
+        snprintf(buf, cap, "rejected: %s: %s (a protocol mismatch between tsectl and the controller?)", rn, cmd);
+        break;
+    }
+    return buf;
+}

@@ -1,0 +1,34 @@
+/* A whole trajectory file checked before anything is sent, by the controller's own rules: the
+ * firmware's trajectory validator (fw/traj.h) with the limits the controller derives from its
+ * parameters (fw/limits.h), starting at rest from the pose and slides it reports.  What passes here
+ * can still be refused while streaming (the controller rounds to its float and its exact slides),
+ * but only at a margin's width. */
+#ifndef TSECTL_TRAJ_CHECK_H
+#define TSECTL_TRAJ_CHECK_H
+
+#include <stdint.h>
+
+#include "fw/params.h"
+#include "fw/proto.h"
+#include "traj_file.h"
+
+/* The configuration tse-sim and tse-fw run (system.md): 1 kHz control segments, 200 kHz steps. */
+#define TSECTL_SEGMENT_HZ 1000u
+#define TSECTL_STEP_HZ 200000u
+
+typedef struct {
+    int row;            /* index of the first refused row, or -1 */
+    proto_message why;  /* a REJECT as the controller would send it for that row */
+    double v_peak, a_peak; /* worst slide speed and acceleration against their limits (1 = at the limit) */
+} traj_check_result;
+
+/* The row's dt on the wire: differences of the rows' times in whole microseconds, so the times add
+ * up exactly. */
+uint32_t traj_dt_us(const traj_row *rows, int i);
+
+/* Checks rows[0..n) from rest at pose0 with slides q0.  Returns 0 when every row passes, 1 when one
+ * is refused (r->row, r->why), -1 when the parameter set itself is refused. */
+int traj_check(const fw_param_set *s, const double pose0[6], const double q0[6], const traj_row *rows, int n,
+               traj_check_result *r);
+
+#endif

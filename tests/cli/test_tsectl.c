@@ -1,0 +1,206 @@
+#define _POSIX_C_SOURCE 200809L
+/* tsectl's pure parts: the words of a REJECT, progress in a log, and the whole-file check of a
+ * trajectory against the controller's rules (tested on physics that needs no code under test: a
+ * path held still, a speed jump at a row, a path too fast for a lowered slide speed limit, a pose
+ * out of reach). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fw/types.h"
+#include "progress.h"
+#include "reject_text.h"
+#include "traj_check.h"
+#include "tse/geometry.h"
+#include "tse/ik.h"
+
+static proto_message reject(int function, int reason, int scissor, int kin, int field, int where)
+{
+    proto_message m;
+    memset(&m, 0, sizeof m);
+    m.msg = PM_REJECT;
+    m.v[0] = function;
+    m.v[2] = reason;
+    m.v[3] = scissor;
+    m.v[4] = kin;
+    m.v[5] = field;
+    m.v[6] = where;
+    return m;
+}
+
+static void has(const char *text, const char *part)
+{
+    if (!strstr(text, part))
+        fail_msg("'%s' not in '%s'", part, text);
+}
+
+static void reject_words(void **state)
+{
+    (void)state;
+    char b[512];
+    const int traj = proto_table[PM_TRAJ_COMMIT].function, home = proto_table[PM_HOME].function;
+    proto_message m = reject(traj, FW_REASON_TIMING, 2, 0, 4, 1350);
+    reject_text(&m, b, sizeof b);
+    has(b, "rejected: timing");
+    has(b, "slide B2");
+    has(b, "1.35 times its speed limit");
+    has(b, "35% more time");
+    m = reject(traj, FW_REASON_TIMING, 1, 0, 16 + 1, 4000);
+    reject_text(&m, b, sizeof b);
+    has(b, "slide A1");
+    has(b, "acceleration limit");
+    m = reject(home, FW_REASON_STATE, 0, 0, FW_STATE_HOMING, 0);
+    reject_text(&m, b, sizeof b);
+    has(b, "rejected: state");
+    has(b, "homing");
+    has(b, "already running");
+    m = reject(home, FW_REASON_STATE, 0, 0, FW_STATE_DISABLED, 0);
+    reject_text(&m, b, sizeof b);
+    has(b, "enable the drives first");
+    m = reject(proto_table[PM_PARAM_SET].function, FW_REASON_STATE, 0, 0, FW_STATE_IDLE, 0);
+    reject_text(&m, b, sizeof b);
+    has(b, "disable");
+    m = reject(proto_table[PM_MOVE_COMMIT].function, FW_REASON_KINEMATICS, 3, TSE_UNREACHABLE, 0, 617);
+    reject_text(&m, b, sizeof b);
+    has(b, "scissor 3 is unreachable at 61.7% of the path");
+    m = reject(proto_table[PM_PARAM_SAVE].function, FW_REASON_STORAGE, 0, 0, 0, 0);
+    reject_text(&m, b, sizeof b);
+    has(b, "nothing was saved");
+}
+
+/* In a log, progress is a handful of plain lines, never carriage returns. */
+static void progress_in_a_log(void **state)
+{
+    (void)state;
+    char path[] = "/tmp/tsectl_progress_XXXXXX";
+    const int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    fflush(stdout);
+    FILE *saved = stdout;
+    stdout = fdopen(fd, "w");
+    progress p;
+    progress_start(&p, "streaming", 0);
+    for (int i = 1; i <= 3000; ++i)
+        progress_update(&p, i / 3000.0, NULL);
+    progress_break();
+    fclose(stdout);
+    stdout = saved;
+    FILE *f = fopen(path, "r");
+    char buf[4096];
+    const size_t n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    remove(path);
+    buf[n] = '\0';
+    assert_null(strchr(buf, '\r'));
+    int lines = 0;
+    for (size_t i = 0; i < n; ++i)
+        lines += buf[i] == '\n';
+    assert_int_equal(lines, 5); /* 0, 25, 50, 75, 100 % */
+    has(buf, "streaming: 100%");
+}
+
+static tse_geometry geom;
+static double pose0[6] = {0, 0, 1.2, 0, 0, 0}, q0[6];
+static fw_param_set defaults;
+
+static int setup(void **state)
+{
+    (void)state;
+    fw_params_default(&defaults);
+    tse_params p;
+    fw_params_kinematics(&defaults, &p);
+    assert_int_equal(tse_geometry_init(&geom, &p), TSE_PARAM_OK);
+    tse_ik_result r;
+    assert_int_equal(tse_ik(&geom, pose0, NULL, &r), TSE_OK);
+    for (int k = 0; k < 6; ++k)
+        q0[k] = r.q[k];
+    return 0;
+}
+
+static traj_row row(double t, double dx, double dz, int line)
+{
+    traj_row r = {t, {pose0[0] + dx, pose0[1], pose0[2] + dz, 0, 0, 0}, line};
+    return r;
+}
+
+static void check_holding_still_passes(void **state)
+{
+    (void)state;
+    traj_row rows[10];
+    for (int i = 0; i < 10; ++i)
+        rows[i] = row(0.1 * (i + 1), 0, 0, i + 1);
+    traj_check_result r;
+    assert_int_equal(traj_check(&defaults, pose0, q0, rows, 10, &r), 0);
+    assert_int_equal(r.row, -1);
+    /* Still, up to the solver's rounding (1e-12 m over 1 ms is 1e-9 m/s). */
+    if (!(r.v_peak < 1e-6 && r.a_peak < 1e-4))
+        fail_msg("v %g a %g of the limits", r.v_peak, r.a_peak);
+}
+
+/* 5 cm along X in 0.5 s from rest: the slides jump to a speed of the order of 0.1 m/s within one
+ * segment, which over the 10 ms stride is of the order of 10 m/s^2 against 1 m/s^2. */
+static void check_speed_jump_is_acceleration(void **state)
+{
+    (void)state;
+    traj_row rows[2] = {row(0.5, 0.05, 0, 7), row(1.0, 0.05, 0, 8)};
+    traj_check_result r;
+    assert_int_equal(traj_check(&defaults, pose0, q0, rows, 2, &r), 1);
+    assert_int_equal(r.row, 0);
+    assert_int_equal(r.why.v[2], FW_REASON_TIMING);
+    assert_true(r.why.v[5] & 16);
+    assert_true((r.why.v[5] & 15) >= 1 && (r.why.v[5] & 15) <= 6);
+    assert_true(r.why.v[6] > 1000);
+}
+
+/* A minimum-jerk 5 cm along X over 2 s is gentle (peak plate acceleration 5.77 * 0.05 / 4 =
+ * 0.07 m/s^2) but its peak plate speed (1.875 * 0.05 / 2 = 0.047 m/s) is far beyond a slide speed
+ * limit lowered to 1 mm/s; with the default 0.15 m/s it passes. */
+static void check_speed_limit(void **state)
+{
+    (void)state;
+    enum { N = 100 };
+    traj_row rows[N];
+    for (int i = 0; i < N; ++i) {
+        const double s = (i + 1) / (double)N, e = s * s * s * (10 - 15 * s + 6 * s * s);
+        rows[i] = row(2.0 * s, 0.05 * e, 0, i + 1);
+    }
+    traj_check_result r;
+    assert_int_equal(traj_check(&defaults, pose0, q0, rows, N, &r), 0);
+    fw_param_set slow = defaults;
+    slow.v[FP_SLIDE_VMAX] = 1000; /* 1 mm/s */
+    assert_int_equal(traj_check(&slow, pose0, q0, rows, N, &r), 1);
+    assert_int_equal(r.why.v[2], FW_REASON_TIMING);
+    assert_int_equal(r.why.v[5] & 16, 0);
+    assert_true(r.why.v[6] > 1000);
+    assert_true(r.row > 0 && r.row < N / 2); /* refused on the way up, where the speed first exceeds it */
+}
+
+static void check_unreachable_row(void **state)
+{
+    (void)state;
+    traj_row rows[2] = {row(0.1, 0, 0, 3), row(60.0, 0, 1.8, 4)}; /* z = 3 m: past full extension */
+    traj_check_result r;
+    assert_int_equal(traj_check(&defaults, pose0, q0, rows, 2, &r), 1);
+    assert_int_equal(r.row, 1);
+    assert_int_equal(r.why.v[2], FW_REASON_KINEMATICS);
+    assert_true(r.why.v[3] >= 1 && r.why.v[3] <= 3);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(reject_words),
+        cmocka_unit_test(progress_in_a_log),
+        cmocka_unit_test_setup(check_holding_still_passes, setup),
+        cmocka_unit_test_setup(check_speed_jump_is_acceleration, setup),
+        cmocka_unit_test_setup(check_speed_limit, setup),
+        cmocka_unit_test_setup(check_unreachable_row, setup),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
