@@ -64,6 +64,7 @@ int fw_apply_params(fw_controller *c, const fw_param_set *s)
     stepgen_positions(&c->sg, pos);
     if (!stepgen_idle(&c->sg) || stepgen_init(&c->sg, &sc, pos) != 0)
         return -1; /* parameters change only at rest */
+    c->overruns_seen = 0; /* the fresh generator counts from zero */
     /* A fresh generator is not halted: an e-stop interrupt before it asked for a halt that must
      * last until the request is completed (the generator is idle, so no step came in between). */
     if (atomic_load(&c->estop_request))
@@ -77,6 +78,11 @@ int fw_apply_params(fw_controller *c, const fw_param_set *s)
     bool rezero = s->v[FP_STEPS_PER_M] != c->params.v[FP_STEPS_PER_M];
     for (int k = 0; k < 6; ++k)
         rezero = rezero || s->v[FP_HOME_SW_1 + k] != c->params.v[FP_HOME_SW_1 + k];
+    /* A new geometry or stroke: the pose the slides hold, and whether they are inside the stroke,
+     * are other than what was known; homing again establishes both (the margins only judge
+     * future paths, so they keep it). */
+    for (int id = FP_L; id <= FP_S_MAX; ++id)
+        rezero = rezero || s->v[id] != c->params.v[id];
     if (rezero) {
         c->homed = false;
         c->pose_known = false;
@@ -406,6 +412,13 @@ static void supervise(fw_controller *c)
     c->bus_off_seen = cs.bus_off_events;
     if ((cs.bus_off || went_bus_off) && c->state != FW_STATE_FAULT)
         fw_fault_raise(c, FW_FAULT_BUS_OFF);
+    /* A segment the generator could not step in its time: the slides fell out of step with each
+     * other and with the path, so the motion stops under control and the fault latches. */
+    const uint32_t overruns = c->sg.overruns;
+    if (overruns != c->overruns_seen) {
+        c->overruns_seen = overruns;
+        fw_fault_raise(c, FW_FAULT_STEP_OVERRUN);
+    }
     const uint32_t wd = (uint32_t)c->params.v[FP_WATCHDOG_MS];
     if (wd > 0 && c->drives_on && now_us(c) - c->last_heartbeat_us > (uint64_t)wd * 1000u)
         fw_fault_raise(c, FW_FAULT_WATCHDOG);

@@ -143,7 +143,9 @@ const proto_def proto_table[PM_COUNT] = {
      {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, "parameter id"},
       FULL_I32("value", 2, "", 1.0, "new value, in the parameter's integer unit")},
      "Set a parameter (only while disabled or in fault); range-checked, then checked with the "
-     "whole set; a refused value changes nothing."},
+     "whole set; a refused value changes nothing. A change of what a step means or of the "
+     "geometry (steps_per_m, home_sw_1..6, L, k1, eta, k3, k4, alpha_min, alpha_max, s_min, "
+     "s_max) clears homed: home again before moving; the margins and limits keep it."},
     {PM_PARAM_SAVE, 0x11, "PARAM_SAVE", PROTO_TO_CONTROLLER, 4, 1,
      {{"magic", PF_U32, 0, 0x45564153, 0x45564153, "", 1.0, 0,
        "0x45564153, the ASCII bytes S, A, V, E in wire order"}},

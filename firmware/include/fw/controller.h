@@ -138,6 +138,7 @@ typedef struct {
     uint64_t next_status_us, next_telemetry_us;
     uint16_t counter;
     uint32_t bus_off_seen;  /* the CAN controller's bus-off count at the last supervision */
+    uint32_t overruns_seen; /* the step generator's overrun count at the last supervision */
     uint32_t segments_run;
 } fw_controller;
 
