@@ -1,12 +1,12 @@
 /* Reading a parameter text file (param_text.h): every line is judged before anything is adopted. */
 #define _POSIX_C_SOURCE 200809L
-#include <ctype.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "param_text_internal.h"
+#include "text.h"
 
 /* Far beyond any parameter file (every parameter with its comments is a few kilobytes): a
  * bigger file is something else. */
@@ -21,15 +21,6 @@ typedef struct {
     size_t errlen;
 } reading;
 
-static char *trim(char *s)
-{
-    while (isspace((unsigned char)*s))
-        ++s;
-    char *e = s + strlen(s);
-    while (e > s && isspace((unsigned char)e[-1]))
-        *--e = '\0';
-    return s;
-}
 
 /* The whole file in a NUL-terminated buffer (the caller frees it), or NULL with the reason. */
 static char *slurp(reading *r)
@@ -64,7 +55,7 @@ static int take_line(reading *r, char *line, int lineno)
     char *hash = strchr(line, '#');
     if (hash)
         *hash = '\0';
-    line = trim(line);
+    line = text_trim(line);
     if (!*line)
         return 0;
     char *eq = strchr(line, '=');
@@ -73,7 +64,7 @@ static int take_line(reading *r, char *line, int lineno)
         return -1;
     }
     *eq = '\0';
-    const char *name = trim(line), *value = trim(eq + 1);
+    const char *name = text_trim(line), *value = text_trim(eq + 1);
     param_key k;
     if (!*name) {
         snprintf(r->err, r->errlen, "%s:%d: no parameter name before '='", r->path, lineno);

@@ -1,9 +1,9 @@
 /* Parameter file parser: see params_file.h for the promise. */
 #include "params_file.h"
 
-#include <ctype.h>
+#include "text.h"
+
 #include <errno.h>
-#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -115,29 +115,6 @@ void kin_params_describe_invalid(const kin_param_values *p, tse_param_id bad, co
                  name, k->key, shown, deg, context, k->rule);
 }
 
-static char *trim(char *s)
-{
-    while (isspace((unsigned char)*s))
-        ++s;
-    char *e = s + strlen(s);
-    while (e > s && isspace((unsigned char)e[-1]))
-        *--e = '\0';
-    return s;
-}
-
-/* The whole token must be one finite number in range: "1.5x", "", "nan" and "1e999" are refused. */
-static int parse_value(const char *s, double *out)
-{
-    if (*s == '\0')
-        return -1;
-    char *end;
-    errno = 0;
-    const double x = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(x))
-        return -1;
-    *out = x;
-    return 0;
-}
 
 static void to_tse(const kin_param_values *p, tse_params *t)
 {
@@ -176,7 +153,7 @@ __attribute__((format(printf, 3, 4))) static int fail(const parse_state *st, int
 
 static int value_of(const parse_state *st, int lineno, const char *key, const char *val, double *x)
 {
-    if (parse_value(val, x) != 0)
+    if (text_number(val, x) != 0)
         return fail(st, lineno, "value of %s is not a finite number: '%s'", key, val);
     return 0;
 }
@@ -187,14 +164,14 @@ static int parse_line(char *buf, int lineno, parse_state *st)
     char *hash = strchr(buf, '#');
     if (hash)
         *hash = '\0';
-    char *line = trim(buf);
+    char *line = text_trim(buf);
     if (*line == '\0')
         return 0;
     char *eq = strchr(line, '=');
     if (!eq)
         return fail(st, lineno, "expected 'key = value', got '%s'", line);
     *eq = '\0';
-    const char *key = trim(line), *val = trim(eq + 1);
+    const char *key = text_trim(line), *val = text_trim(eq + 1);
     double x;
     const int ctl = controller_only(key);
     if (ctl >= 0) {

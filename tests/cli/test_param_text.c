@@ -1,7 +1,7 @@
 /* Parameters as SI text (host_tools/params/param_text.h): every conversion family against values
  * worked by hand, the messages of refused values and sets, and the parameter file (round trips,
  * each error with its line, nothing half-applied, the file left alone on error). */
-#define _POSIX_C_SOURCE 200809L /* mkdtemp */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -16,32 +16,9 @@
 #include <cmocka.h>
 
 #include "param_text.h"
+#include "scratch_dir.h"
 
 #define PI 3.14159265358979323846
-
-static char dir[64];
-
-static int make_dir(void **state)
-{
-    (void)state;
-    strcpy(dir, "/tmp/test_param_text.XXXXXX");
-    return mkdtemp(dir) ? 0 : -1;
-}
-
-static int remove_dir(void **state)
-{
-    (void)state;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    return system(cmd) == 0 ? 0 : -1;
-}
-
-static const char *path_of(const char *name)
-{
-    static char p[128];
-    snprintf(p, sizeof p, "%s/%s", dir, name);
-    return p;
-}
 
 static void put_file(const char *path, const char *bytes, size_t n)
 {
@@ -351,7 +328,7 @@ static void changed_set(fw_param_set *s)
 static void test_file_round_trip(void **state)
 {
     (void)state;
-    const char *p = path_of("rt.params");
+    const char *p = scratch_path("rt.params");
     char err[512] = "";
     fw_param_set def, s, changed;
     fw_params_default(&def);
@@ -373,7 +350,7 @@ static void test_file_round_trip(void **state)
         if (len > 100)
             fail_msg("line longer than 100: %.*s", (int)len, line);
     }
-    assert_int_equal(access(path_of("rt.params.tmp"), F_OK), -1); /* nothing left behind */
+    assert_int_equal(access(scratch_path("rt.params.tmp"), F_OK), -1); /* nothing left behind */
 
     changed_set(&changed);
     assert_int_equal(param_file_write(p, &changed, err, sizeof err), 0);
@@ -385,7 +362,7 @@ static void test_file_round_trip(void **state)
 
 static void read_ok(const char *text, fw_param_set *s)
 {
-    const char *p = path_of("ok.params");
+    const char *p = scratch_path("ok.params");
     put_file(p, text, strlen(text));
     char err[512] = "";
     fw_params_default(s);
@@ -413,7 +390,7 @@ static void test_file_spellings(void **state)
     assert_memory_equal(&s, &want, sizeof s);
 
     /* Missing keys keep the value the set had, not the default. */
-    const char *p = path_of("keep.params");
+    const char *p = scratch_path("keep.params");
     put_file(p, "L = 1.7\n", 8);
     changed_set(&s);
     changed_set(&want);
@@ -428,7 +405,7 @@ static void test_file_spellings(void **state)
 static void file_error_from(const fw_param_set *start, const char *text, size_t len, const char *want_fmt,
                             int prefix)
 {
-    const char *p = path_of("bad.params");
+    const char *p = scratch_path("bad.params");
     put_file(p, text, len);
     fw_param_set s = *start;
     char err[512] = "", want[512];
@@ -492,7 +469,7 @@ static void test_file_errors(void **state)
     /* No file at all. */
     fw_param_set s = c;
     char err[512];
-    assert_int_equal(param_file_read(path_of("absent.params"), &s, err, sizeof err), -1);
+    assert_int_equal(param_file_read(scratch_path("absent.params"), &s, err, sizeof err), -1);
     assert_contains(err, "absent.params: cannot open: No such file or directory");
     assert_memory_equal(&s, &c, sizeof s);
 }
@@ -501,7 +478,7 @@ static void test_file_errors(void **state)
 static void test_write_errors(void **state)
 {
     (void)state;
-    const char *p = path_of("keep.params");
+    const char *p = scratch_path("keep.params");
     static const char old[] = "L = 1.7\n";
     put_file(p, old, sizeof old - 1);
     fw_param_set s;
@@ -512,22 +489,22 @@ static void test_write_errors(void **state)
     assert_contains(err, "keep.params: not written: alpha_min = 1.3 rad must be below alpha_max = 1.215271 rad");
     size_t n;
     assert_string_equal(get_file(p, &n), old);
-    assert_int_equal(access(path_of("keep.params.tmp"), F_OK), -1);
+    assert_int_equal(access(scratch_path("keep.params.tmp"), F_OK), -1);
 
     /* The temporary cannot be made. */
     fw_params_default(&s);
-    assert_int_equal(param_file_write(path_of("no/such/dir/p.params"), &s, err, sizeof err), -1);
+    assert_int_equal(param_file_write(scratch_path("no/such/dir/p.params"), &s, err, sizeof err), -1);
     assert_contains(err, "p.params.tmp: cannot create: No such file or directory");
 
     /* The rename cannot replace what is there (a directory): it stays, the temporary goes. */
-    const char *d = path_of("adir");
+    const char *d = scratch_path("adir");
     assert_int_equal(mkdir(d, 0700), 0);
     assert_int_equal(param_file_write(d, &s, err, sizeof err), -1);
     assert_contains(err, "adir: cannot replace it with");
     struct stat st;
     assert_int_equal(stat(d, &st), 0);
     assert_true(S_ISDIR(st.st_mode));
-    assert_int_equal(access(path_of("adir.tmp"), F_OK), -1);
+    assert_int_equal(access(scratch_path("adir.tmp"), F_OK), -1);
 }
 
 int main(void)
@@ -539,5 +516,5 @@ int main(void)
         cmocka_unit_test(test_file_round_trip), cmocka_unit_test(test_file_spellings),
         cmocka_unit_test(test_file_errors),   cmocka_unit_test(test_write_errors),
     };
-    return cmocka_run_group_tests(tests, make_dir, remove_dir);
+    return cmocka_run_group_tests(tests, scratch_dir_make, scratch_dir_remove);
 }

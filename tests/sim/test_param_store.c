@@ -1,7 +1,7 @@
 /* tse-sim's parameter storage (host_tools/tse_sim/param_store.h): the firmware's record saved
  * through it lands in the text file and comes back from it as the same set; a missing file is the
  * defaults; a bad file does not open and is left as it was; a save that cannot be done fails. */
-#define _POSIX_C_SOURCE 200809L /* mkdtemp */
+#define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -14,30 +14,7 @@
 #include <cmocka.h>
 
 #include "param_store.h"
-
-static char dir[64];
-
-static int make_dir(void **state)
-{
-    (void)state;
-    strcpy(dir, "/tmp/test_param_store.XXXXXX");
-    return mkdtemp(dir) ? 0 : -1;
-}
-
-static int remove_dir(void **state)
-{
-    (void)state;
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    return system(cmd) == 0 ? 0 : -1;
-}
-
-static const char *path_of(const char *name)
-{
-    static char p[128];
-    snprintf(p, sizeof p, "%s/%s", dir, name);
-    return p;
-}
+#include "scratch_dir.h"
 
 static size_t slurp(const char *path, char *buf, size_t cap)
 {
@@ -52,7 +29,7 @@ static size_t slurp(const char *path, char *buf, size_t cap)
 static void test_save_then_load(void **state)
 {
     (void)state;
-    const char *p = path_of("sim.params");
+    const char *p = scratch_path("sim.params");
     char err[512] = "";
     sim_param_store st;
     assert_int_equal(sim_param_store_open(&st, p, NULL, err, sizeof err), 0);
@@ -94,7 +71,7 @@ static void test_save_then_load(void **state)
 static void test_bad_file_does_not_open(void **state)
 {
     (void)state;
-    const char *p = path_of("bad.params");
+    const char *p = scratch_path("bad.params");
     static const char bad[] = "# mine\nslide_vmax = 0.2\nslide_amax = lots\n";
     FILE *f = fopen(p, "wb");
     assert_non_null(f);
@@ -127,7 +104,7 @@ static void test_save_that_cannot_be_done(void **state)
     assert_non_null(strstr(st.err, "no parameter file"));
 
     /* A record that is not one (a flipped bit breaks its CRC). */
-    const char *p = path_of("never.params");
+    const char *p = scratch_path("never.params");
     assert_int_equal(sim_param_store_open(&st, p, NULL, err, sizeof err), 0);
     h = sim_param_store_hal(&st);
     buf[10] ^= 1u;
@@ -136,7 +113,7 @@ static void test_save_that_cannot_be_done(void **state)
     buf[10] ^= 1u;
 
     /* A directory that does not exist. */
-    assert_int_equal(sim_param_store_open(&st, path_of("no/such/x.params"), NULL, err, sizeof err), 0);
+    assert_int_equal(sim_param_store_open(&st, scratch_path("no/such/x.params"), NULL, err, sizeof err), 0);
     h = sim_param_store_hal(&st);
     assert_int_equal(h.save(h.ctx, buf, n), -1);
     assert_non_null(strstr(st.err, "cannot create"));
@@ -149,5 +126,5 @@ int main(void)
         cmocka_unit_test(test_bad_file_does_not_open),
         cmocka_unit_test(test_save_that_cannot_be_done),
     };
-    return cmocka_run_group_tests(tests, make_dir, remove_dir);
+    return cmocka_run_group_tests(tests, scratch_dir_make, scratch_dir_remove);
 }

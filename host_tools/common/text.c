@@ -1,0 +1,30 @@
+#include "text.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+char *text_trim(char *s)
+{
+    while (isspace((unsigned char)*s))
+        ++s;
+    char *e = s + strlen(s);
+    while (e > s && isspace((unsigned char)e[-1]))
+        *--e = '\0';
+    return s;
+}
+
+int text_number(const char *s, double *out)
+{
+    if (*s == '\0')
+        return -1;
+    char *end;
+    errno = 0;
+    const double x = strtod(s, &end);
+    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(x))
+        return -1;
+    *out = x;
+    return 0;
+}

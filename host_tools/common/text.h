@@ -1,0 +1,13 @@
+/* Small text rules every host tool's parsers share, so that a value means the same in a
+ * parameter file, on a command line and in a CSV row. */
+#ifndef TSE_HOST_TEXT_H
+#define TSE_HOST_TEXT_H
+
+/* Strips blanks (isspace) from both ends in place; returns the first kept character. */
+char *text_trim(char *s);
+
+/* The whole of s is one finite number for strtod (which may skip leading blanks): "", "1.5x",
+ * "nan", "inf" and "1e999" (ERANGE, also an underflow) are refused.  Returns 0 with *out, or -1. */
+int text_number(const char *s, double *out);
+
+#endif
