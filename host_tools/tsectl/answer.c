@@ -36,6 +36,14 @@ int ctl_status(tlink *l, proto_message *status)
     return -1;
 }
 
+int ctl_status_needed(tlink *l, proto_message *status)
+{
+    const int seq = ctl_status(l, status);
+    if (seq < 0)
+        ctl_error("no STATUS from node %u within %d ms (is it on the bus?)", l->node, tsectl_timeout_ms);
+    return seq;
+}
+
 int ctl_answer(tlink *l, int function, int seq, proto_message *ack, proto_message *reject)
 {
     const uint64_t end = link_now_us() + (uint64_t)tsectl_timeout_ms * 1000u;
@@ -61,6 +69,16 @@ int ctl_answer(tlink *l, int function, int seq, proto_message *ack, proto_messag
     return EXIT_TIMEOUT;
 }
 
+int ctl_send_pose(tlink *l, int seq, const double p[6])
+{
+    for (int k = 0; k < 3; ++k) {
+        const int32_t v[3] = {seq, (int32_t)lround(p[2 * k] * 1e6), (int32_t)lround(p[2 * k + 1] * 1e6)};
+        if (link_send(l, (proto_msg)(PM_POSE_A + k), v) != 0)
+            return -1;
+    }
+    return 0;
+}
+
 void ctl_print_reject(const proto_message *reject)
 {
     char text[512];
@@ -69,11 +87,9 @@ void ctl_print_reject(const proto_message *reject)
 
 int ctl_simple(tlink *l, proto_msg msg, proto_message *reject)
 {
-    const int seq = ctl_status(l, NULL);
-    if (seq < 0) {
-        ctl_error("no STATUS from node %u within %d ms (is it on the bus?)", l->node, tsectl_timeout_ms);
+    const int seq = ctl_status_needed(l, NULL);
+    if (seq < 0)
         return tsectl_interrupted ? EXIT_INTERRUPTED : EXIT_TIMEOUT;
-    }
     const int32_t v[1] = {seq};
     if (link_send(l, msg, v) != 0) {
         ctl_error("cannot send on the bus");

@@ -4,6 +4,8 @@
 #include <string.h>
 
 #include "commands.h"
+#include "text.h"
+#include "traj_file.h" /* the wire's pose range */
 
 typedef struct {
     double p[6];
@@ -27,16 +29,16 @@ static int parse_move(int argc, char **argv, move_args *a)
             a->kind = argv[i][2] == 's';
             if (i + 1 >= argc)
                 return usage_error("move", a->kind ? "--speed needs a plate speed in m/s" : "--duration needs seconds", NULL);
-            if (parse_number(argv[++i], &value) != 0 || !(value > 0))
+            if (text_number(argv[++i], &value) != 0 || !(value > 0))
                 return usage_error("move", a->kind ? "--speed takes a positive speed in m/s" : "--duration takes positive seconds",
                                    argv[i]);
         } else if (npos < 6) {
-            if (parse_number(argv[i], &a->p[npos]) != 0) {
+            if (text_number(argv[i], &a->p[npos]) != 0) {
                 char what[64];
                 snprintf(what, sizeof what, "%s is not a number", axis[npos]);
                 return usage_error("move", what, argv[i]);
             }
-            const double lim = npos < 3 ? 4.0 : 3.141593;
+            const double lim = npos < 3 ? TRAJ_FILE_POS_MAX : TRAJ_FILE_ANGLE_MAX;
             if (fabs(a->p[npos]) > lim) {
                 char what[96];
                 snprintf(what, sizeof what, "%s is outside the wire's range -%g..%g %s", axis[npos], lim, lim,
@@ -72,20 +74,11 @@ int run_move(tlink *l, int argc, char **argv)
     move_args a;
     if (parse_move(argc, argv, &a) != EXIT_OK)
         return EXIT_USAGE;
-    const int seq = ctl_status(l, NULL);
-    if (seq < 0) {
-        ctl_error("no STATUS from node %u within %d ms (is it on the bus?)", l->node, tsectl_timeout_ms);
+    const int seq = ctl_status_needed(l, NULL);
+    if (seq < 0)
         return EXIT_TIMEOUT;
-    }
-    int32_t pose[3][3];
-    for (int k = 0; k < 3; ++k) {
-        pose[k][0] = seq;
-        pose[k][1] = (int32_t)lround(a.p[2 * k] * 1e6);
-        pose[k][2] = (int32_t)lround(a.p[2 * k + 1] * 1e6);
-    }
     const int32_t commit[3] = {seq, a.kind, a.raw};
-    if (link_send(l, PM_POSE_A, pose[0]) || link_send(l, PM_POSE_B, pose[1]) || link_send(l, PM_POSE_C, pose[2]) ||
-        link_send(l, PM_MOVE_COMMIT, commit)) {
+    if (ctl_send_pose(l, seq, a.p) != 0 || link_send(l, PM_MOVE_COMMIT, commit) != 0) {
         ctl_error("cannot send on the bus");
         return EXIT_BUS;
     }

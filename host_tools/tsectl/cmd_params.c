@@ -6,13 +6,11 @@
 #include "ctl_params.h"
 #include "param_text.h"
 
-static void print_value(const char *prefix, int id, int32_t raw)
+/* "name = value unit", the value in k's spelling. */
+static void print_value(const char *name, const param_key *k, int32_t raw)
 {
-    param_key k;
-    param_si_key(id, &k);
     char v[64];
-    printf("%s%s = %s%s%s\n", prefix, fw_param_table[id].name, param_to_text(&k, raw, v, sizeof v), *k.unit ? " " : "",
-           k.unit);
+    printf("%s = %s%s%s\n", name, param_to_text(k, raw, v, sizeof v), *k->unit ? " " : "", k->unit);
 }
 
 static void list(void)
@@ -109,8 +107,11 @@ int run_params(tlink *l, int argc, char **argv)
         if (rc != EXIT_OK)
             return rc;
         printf("# parameters of node %u (SI units; tse-sim --params and tse-kin --params read this format)\n", l->node);
-        for (int id = 0; id < FP_COUNT; ++id)
-            print_value("", id, s.v[id]);
+        for (int id = 0; id < FP_COUNT; ++id) {
+            param_key k;
+            param_si_key(id, &k);
+            print_value(fw_param_table[id].name, &k, s.v[id]);
+        }
         return EXIT_OK;
     }
     param_key k;
@@ -118,10 +119,8 @@ int run_params(tlink *l, int argc, char **argv)
         param_lookup(argv[1], &k);
         int32_t raw;
         const int rc = ctl_param_get(l, k.id, &raw);
-        if (rc == EXIT_OK) {
-            char v[64];
-            printf("%s = %s%s%s\n", argv[1], param_to_text(&k, raw, v, sizeof v), *k.unit ? " " : "", k.unit);
-        }
+        if (rc == EXIT_OK)
+            print_value(argv[1], &k, raw);
         return rc;
     }
     int32_t raw;
@@ -146,8 +145,7 @@ int run_params(tlink *l, int argc, char **argv)
     const uint64_t end = link_now_us() + (uint64_t)tsectl_timeout_ms * 1000u;
     while (link_now_us() < end)
         if (link_recv(l, &m, 50) == 1 && m.msg == PM_PARAM_VALUE && m.v[0] == k.id) {
-            char t[64];
-            printf("%s = %s%s%s\n", argv[1], param_to_text(&k, m.v[1], t, sizeof t), *k.unit ? " " : "", k.unit);
+            print_value(argv[1], &k, m.v[1]);
             return EXIT_OK;
         }
     ctl_error("no PARAM_VALUE after the set was acknowledged");

@@ -55,10 +55,8 @@ int run_status(tlink *l, int argc, char **argv)
 {
     (void)argv;
     proto_message st;
-    if (ctl_status(l, &st) < 0) {
-        ctl_error("no STATUS from node %u within %d ms (is it on the bus?)", l->node, tsectl_timeout_ms);
+    if (ctl_status_needed(l, &st) < 0)
         return EXIT_TIMEOUT;
-    }
     /* The pose comes with the telemetry (every telemetry_ms, 50 ms by default); only once homed. */
     telemetry t;
     memset(&t, 0, sizeof t);

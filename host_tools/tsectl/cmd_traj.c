@@ -85,15 +85,8 @@ static int stream(tlink *l, const char *path, const traj_row *rows, int n, int s
         if (tsectl_interrupted)
             return ctl_error("interrupted at row %d", i + 1), stop_at_rest(l), EXIT_INTERRUPTED;
         const int s = (uint8_t)seq;
-        int32_t part[3][3];
-        for (int k = 0; k < 3; ++k) {
-            part[k][0] = s;
-            part[k][1] = (int32_t)lround(rows[i].p[2 * k] * 1e6);
-            part[k][2] = (int32_t)lround(rows[i].p[2 * k + 1] * 1e6);
-        }
         const int32_t commit[3] = {s, (int32_t)traj_dt_us(rows, i), i == n - 1};
-        if (link_send(l, PM_POSE_A, part[0]) || link_send(l, PM_POSE_B, part[1]) || link_send(l, PM_POSE_C, part[2]) ||
-            link_send(l, PM_TRAJ_COMMIT, commit)) {
+        if (ctl_send_pose(l, s, rows[i].p) != 0 || link_send(l, PM_TRAJ_COMMIT, commit) != 0) {
             ctl_error("%s:%d: cannot send row %d on the bus", path, rows[i].line, i + 1);
             stop_at_rest(l);
             return EXIT_BUS;
@@ -143,12 +136,11 @@ int run_trajectory(tlink *l, int argc, char **argv)
     }
     int rc = EXIT_OK;
     proto_message st;
-    const int seq = ctl_status(l, &st);
+    const int seq = ctl_status_needed(l, &st);
     fw_param_set set;
     telemetry tel;
     traj_check_result chk;
     if (seq < 0) {
-        ctl_error("no STATUS from node %u within %d ms (is it on the bus?)", l->node, tsectl_timeout_ms);
         rc = EXIT_TIMEOUT;
     } else if (st.v[0] != FW_STATE_IDLE || !(st.v[2] & 1)) {
         ctl_error("not started: a trajectory starts at rest from a homed, enabled controller, and node %u is %s%s "

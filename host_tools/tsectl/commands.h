@@ -20,9 +20,6 @@ extern const int tsectl_command_count;
 /* "usage error" on stderr with the command's synopsis; returns EXIT_USAGE. */
 int usage_error(const char *cmd, const char *what, const char *arg);
 
-/* One finite number, the whole of s. */
-int parse_number(const char *s, double *out);
-
 int check_none(int argc, char **argv, int *done);
 int check_flags(int argc, char **argv, int *done); /* optional --wait only */
 

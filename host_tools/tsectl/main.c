@@ -8,7 +8,6 @@
  * shows it and the DBC decodes it.  Exit statuses: tsectl.h. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -108,14 +107,6 @@ int usage_error(const char *cmd, const char *what, const char *arg)
     else
         fprintf(stderr, "(try 'tsectl --help')\n");
     return EXIT_USAGE;
-}
-
-int parse_number(const char *s, double *out)
-{
-    char *end;
-    errno = 0;
-    *out = strtod(s, &end);
-    return *s && !*end && errno == 0 && isfinite(*out) ? 0 : -1;
 }
 
 static int is_help(const char *s)

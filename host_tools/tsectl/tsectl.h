@@ -24,6 +24,8 @@ void ctl_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Waits for a STATUS (up to the time limit).  Returns the sequence number a new commit must use
  * (last accepted + 1, mod 256) with *status filled, or -1. */
 int ctl_status(tlink *l, proto_message *status);
+/* ctl_status for a command that cannot go on without one: says so on stderr when there is none. */
+int ctl_status_needed(tlink *l, proto_message *status);
 
 /* Waits for the ACK or REJECT of (function, seq); seq < 0 matches any.  Returns EXIT_OK with *ack,
  * EXIT_REJECTED with *reject (nothing printed), EXIT_TIMEOUT (printed), EXIT_INTERRUPTED. */
@@ -38,6 +40,9 @@ int ctl_wait_rest(tlink *l, double expected_s, const char *what, int show_progre
 /* Sends a one-field command with the next sequence number and waits for its answer; a REJECT is
  * explained.  Returns an exit status; *reject gets a REJECT if given. */
 int ctl_simple(tlink *l, proto_msg msg, proto_message *reject);
+
+/* POSE_A, POSE_B and POSE_C of pose p (m, rad) under sequence number seq.  Returns 0 or -1. */
+int ctl_send_pose(tlink *l, int seq, const double p[6]);
 
 /* Prints a REJECT in words (reject_text.h) with the command it answered. */
 void ctl_print_reject(const proto_message *reject);
