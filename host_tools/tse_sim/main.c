@@ -21,6 +21,7 @@
 #include "fw/controller.h"
 #include "hal_posix/plant.h"
 #include "hal_posix/posix_hal.h"
+#include "text.h"
 #include "estop_watch.h"
 #include "param_store.h"
 #include "param_text.h"
@@ -170,8 +171,7 @@ int main(int argc, char **argv)
         } else if (!strcmp(argv[i], "--write-params") && v) {
             write_params = argv[++i];
         } else if (!strcmp(argv[i], "--start") && v) {
-            start = strtod(argv[++i], &end);
-            if (*end || !(start > -0.01 && start < 0.91))
+            if (text_number(argv[++i], &start) != 0 || !(start > -0.01 && start < 0.91))
                 return usage("--start takes a slide position in metres inside the stroke");
         } else {
             fprintf(stderr, "tse-sim: unexpected argument '%s'\n", argv[i]);

@@ -62,5 +62,11 @@ check "it got as far as the interface" grep -q "cannot open CAN interface nosuch
 check "a missing file is the defaults (then no CAN: exit 1)" test $rc -eq 1
 check "a missing file is not created at start" test ! -e "$tmp/missing.params"
 
+# --start: one number inside the stroke; an empty or partial one is refused (it was read as 0).
+for bad in "" "0.1x" "1"; do
+  "$T" --iface nosuchcan0 --node 1 --start "$bad" >/dev/null 2>&1; rc=$?
+  check "--start '$bad' exits 2" test $rc -eq 2
+done
+
 echo "$pass passed, $fail failed"
 test $fail -eq 0
