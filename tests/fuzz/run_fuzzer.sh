@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Runs one libFuzzer target for a bounded time from the committed seed corpus, and prints its
+# figures (executions, coverage, corpus size).  New inputs go to a working corpus in the build
+# tree, never into the repository; a crash leaves its input in WORK/artifacts and fails.
+#   run_fuzzer.sh FUZZER NAME SECONDS SEED_DIR WORK_DIR [extra libFuzzer flags]
+set -euo pipefail
+fuzzer=$1 name=$2 seconds=$3 seeds=$4 work=$5
+shift 5
+mkdir -p "$work/corpus" "$work/artifacts"
+log="$work/fuzz.log"
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+start=$(date +%s)
+set +e
+"$fuzzer" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 -print_final_stats=1 \
+  -artifact_prefix="$work/artifacts/" "$@" "$work/corpus" "$seeds" >"$log" 2>&1
+rc=$?
+set -e
+end=$(date +%s)
+stat() { sed -n "s/^stat::$1: *//p" "$log" | tail -1; }
+done_line=$(grep -E '^#[0-9]+[[:space:]]+DONE' "$log" | tail -1 || true)
+cov=$(sed -nE 's/.* cov: ([0-9]+).*/\1/p' <<<"$done_line")
+ft=$(sed -nE 's/.* ft: ([0-9]+).*/\1/p' <<<"$done_line")
+corp=$(sed -nE 's/.* corp: ([0-9]+).*/\1/p' <<<"$done_line")
+echo "fuzz $name: $(stat number_of_executed_units) executions in $((end - start)) s" \
+     "($(stat average_exec_per_sec)/s), coverage ${cov:-?} edges, ${ft:-?} features," \
+     "corpus ${corp:-?} inputs, peak RSS $(stat peak_rss_mb) MB"
+if [ "$rc" -ne 0 ]; then
+  tail -n 60 "$log"
+  echo "fuzz $name: FAILED (exit $rc); input kept in $work/artifacts/:" >&2
+  ls -1 "$work/artifacts" >&2 || true
+  echo "fuzz $name: reproduce with: $fuzzer $work/artifacts/<file>; once fixed, add the file" \
+       "to tests/fuzz/regressions/$name/ so that the host build replays it" >&2
+  exit "$rc"
+fi
