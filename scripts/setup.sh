@@ -14,6 +14,8 @@ packages=(
   python3-numpy python3-scipy       # the fsolve baseline of the benchmark
   python3-canmatrix python3-can     # third-party decoders that check the DBC
   qemu-system-x86 busybox-static cpio can-utils   # the vcan harness (a VM where the kernel has no CAN)
+  clang libclang-rt-14-dev          # the fuzz preset (libFuzzer, AddressSanitizer, UBSan)
+  cppcheck clang-tidy               # scripts/static.sh
 )
 
 missing=()
