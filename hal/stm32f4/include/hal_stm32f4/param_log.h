@@ -31,8 +31,8 @@
  *     last word: CRC of all the record's words before it.
  * CRC: CRC-32 of IEEE 802.3 (reflected polynomial 0xEDB88320, initial value and final xor
  * 0xFFFFFFFF) over the bytes in flash order.  A record of n payload bytes takes
- * 4 * (3 + ceil(n / 4)) bytes: 124 bytes for the firmware's 110-byte parameter record, of
- * which a 128 KiB sector holds 1056 (a word fewer for each reset in between).
+ * 4 * (3 + ceil(n / 4)) bytes: 160 bytes for the firmware's 146-byte parameter record (34
+ * parameters), of which a 128 KiB sector holds 819 (a word fewer for each reset in between).
  *
  * Plain C over flash_ops: no register access, no heap.  Not reentrant: one caller at a time. */
 #ifndef TSE_PARAM_LOG_H
