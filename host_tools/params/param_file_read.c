@@ -34,7 +34,7 @@ static char *slurp(reading *r)
     const size_t n = text ? fread(text, 1, MAX_BYTES + 1, f) : 0;
     const int read_errno = errno;
     const int failed = ferror(f);
-    fclose(f);
+    (void)fclose(f); /* read only: the read's error is the one that counts */
     const char *why = !text ? "out of memory"
                       : failed ? strerror(read_errno)
                       : n > MAX_BYTES ? "larger than 256 KiB: not a parameter text file"

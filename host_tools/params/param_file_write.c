@@ -104,13 +104,13 @@ int param_file_write(const char *path, const fw_param_set *s, char *err, size_t 
     }
     if (ok && rename(tmp, path) != 0) {
         snprintf(err, errlen, "%s: cannot replace it with %s: %s", path, tmp, strerror(errno));
-        remove(tmp);
+        (void)remove(tmp); /* tidying up after the failure reported */
         free(tmp);
         return -1;
     }
     if (!ok) {
         snprintf(err, errlen, "%s: cannot write: %s", tmp, strerror(e));
-        remove(tmp);
+        (void)remove(tmp); /* tidying up after the failure reported */
         free(tmp);
         return -1;
     }

@@ -10,10 +10,12 @@
 /* The power of ten that per_unit is (0 for 1, 6 for 1e6), or -1. */
 static int decimal_places(double per_unit)
 {
-    double p = 1.0;
-    for (int d = 0; d <= 9; ++d, p *= 10.0)
+    double p = 1.0; /* exact: powers of ten up to 1e22 are doubles */
+    for (int d = 0; d <= 9; ++d) {
         if (p == per_unit)
             return d;
+        p *= 10.0;
+    }
     return -1;
 }
 

@@ -138,7 +138,7 @@ int kin_bench_run(const kin_ctx *c, const double (*poses)[6], int n, int repeats
             p[i][k] = (tse_real)poses[i][k];
     tse_real first_seed[6];
     count_pass(&c->g, p, q, n, first_seed, out);
-    double *t_cold = t, *t_warm = t + repeats, *t_fk = t + 2 * repeats;
+    double *t_cold = t, *t_warm = t + repeats, *t_fk = t + 2 * (size_t)repeats;
     /* Interleaved, so that a change of clock speed during the run touches all three alike. */
     for (int r = 0; r < repeats; ++r) {
         t_cold[r] = time_cold(&c->g, p, n);

@@ -102,8 +102,10 @@ static int run_command(const command *c, int argc, char **argv)
     }
 
     kin_run run = {&opt, &params, params_name, opt.use_float ? &kin_ops_float : &kin_ops_double, NULL};
+    /* As long-lived as run.ctx: create() only writes it, but a checker that cannot see into
+     * create() must assume the context keeps its address. */
+    tse_param_id bad;
     if (c->needs_design) {
-        tse_param_id bad;
         run.ctx = run.ops->create(&params, &bad);
         if (!run.ctx) {
             char note[64];

@@ -55,9 +55,10 @@ static int parse_grid(const char *s, int grid[3])
 {
     /* Split by hand rather than through csv: counts are integers, "21.0" or "2e1" is a mistake. */
     char buf[64];
-    if (strlen(s) >= sizeof buf)
+    const size_t len = strlen(s);
+    if (len >= sizeof buf)
         return -1;
-    strcpy(buf, s);
+    memcpy(buf, s, len + 1);
     const long lo[3] = {2, 1, 2};
     long v[3];
     char *field = buf;
@@ -88,7 +89,7 @@ static int apply(unsigned bit, const char *name, const char *val, kin_options *o
         o->params_path = val;
         return 0;
     case KIN_OPT_PRECISION:
-        if (strcmp(val, "float") && strcmp(val, "double"))
+        if (strcmp(val, "float") != 0 && strcmp(val, "double") != 0)
             break;
         o->use_float = !strcmp(val, "float");
         return 0;

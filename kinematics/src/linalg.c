@@ -41,12 +41,14 @@ void tse_lu_solve6(const tse_real LU[6][6], const int perm[6], const tse_real b[
     for (int i = 0; i < 6; ++i) {
         tse_real s = b[perm[i]];
         for (int j = 0; j < i; ++j)
+            /* cppcheck-suppress uninitvar ; y[j < i] was set by an earlier pass of this loop */
             s -= LU[i][j] * y[j];
         y[i] = s;
     }
     for (int i = 5; i >= 0; --i) {
         tse_real s = y[i];
         for (int j = i + 1; j < 6; ++j)
+            /* cppcheck-suppress uninitvar ; x[j > i] was set by an earlier pass of this loop */
             s -= LU[i][j] * x[j];
         x[i] = s / LU[i][i];
     }

@@ -66,6 +66,9 @@ typedef enum {
     PM_COUNT
 } proto_msg;
 
+/* Fields in the order a row of proto_table.c reads (message, function code, name...); the
+ * tightest order would save 8 bytes of flash a row, which the image does not need.
+ * NOLINTNEXTLINE(clang-analyzer-optin.performance.Padding) */
 typedef struct {
     proto_msg msg;
     uint8_t function;    /* id >> 4 */

@@ -181,7 +181,9 @@ bool plant_update_pose(tse_plant *p)
         p->pose_valid = false;
         return false;
     }
-    memcpy(p->pose, f.pose, sizeof p->pose);
+    /* By element: f.pose is tse_real, double only while this file is built in double. */
+    for (int k = 0; k < 6; ++k)
+        p->pose[k] = (double)f.pose[k];
     p->pose_valid = true;
     return true;
 }

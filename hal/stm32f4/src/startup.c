@@ -6,6 +6,8 @@
 #include "hal_stm32f4/fault.h"
 #include "hal_stm32f4/regs_core.h"
 
+/* The linker script's names, reserved identifiers by the GNU convention.
+ * NOLINTNEXTLINE(bugprone-reserved-identifier) */
 extern uint32_t _sidata, _sdata, _edata, _sbss, _ebss, _estack;
 int main(void);
 
