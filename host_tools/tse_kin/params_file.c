@@ -282,6 +282,6 @@ kin_params_outcome kin_params_load(const char *path, kin_param_values *p, char *
         return KIN_PARAMS_UNREADABLE;
     }
     const kin_params_outcome r = kin_params_parse_stream(f, path, p, err, errlen);
-    fclose(f);
+    (void)fclose(f); /* read only: the read's errors are in r */
     return r;
 }
