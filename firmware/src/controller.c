@@ -185,6 +185,33 @@ static tse_real stop_time(const fw_controller *c, tse_real share)
     return T < MIN_STOP_TIME ? MIN_STOP_TIME : T;
 }
 
+/* A stop ramp that holds for the whole path, whatever its own acceleration: the ramp scales the
+ * path's time rate r from 1 to 0 (advance), so a slide's acceleration is r^2 times the path's
+ * own (at most `along` of the limit) plus r' times the path's slide speed.  That speed goes on
+ * growing while the ramp stretches time along an accelerating path, so a ramp sized from the
+ * present speed (stop_time) can brake beyond the limit; sized from the fastest the path's slides
+ * go (v_peak), with `share` of the limit for braking, the sum is at most the peak over the ramp's
+ * x in [0, 1] of along r(x)^2 + share (1 - cos 2 pi x) / 2: for along 0.95 and share 0.4 (a
+ * move, planned within 95 % of the limits), 0.998 of the limit; for 0.9 and 0.45 (homing's
+ * joint move), 0.972. */
+static tse_real path_stop_time(const fw_controller *c, tse_real v_peak, tse_real share)
+{
+    const tse_real T = TSE_R(2.0) * v_peak / (share * c->lim.slide_amax);
+    return T < MIN_STOP_TIME ? MIN_STOP_TIME : T;
+}
+
+/* The fastest a slide goes along homing's joint move: its cruise speed on the longest slide. */
+static tse_real joint_v_peak(const fw_controller *c)
+{
+    tse_real longest = TSE_R(0.0);
+    for (int k = 0; k < 6; ++k) {
+        const tse_real d = tse_fabs(c->joint.to[k] - c->joint.from[k]);
+        if (d > longest)
+            longest = d;
+    }
+    return c->joint.prof.V * longest;
+}
+
 void fw_stop_motion(fw_controller *c)
 {
     if (c->home.active) {
@@ -203,18 +230,29 @@ void fw_stop_motion(fw_controller *c)
     if (c->stopping)
         return;
     fw_set_state(c, FW_STATE_STOPPING);
-    if (c->src == FW_SRC_MOVE && !c->has_next && c->tau >= c->move.prof.T - c->move.prof.Ta) {
+    /* Once a queued move has begun to blend in, the slides are on the sum of the two paths: the
+     * stop must follow that path, for dropping the second move would send them back to the
+     * first's at once.  Before, the path is the running move's alone. */
+    const bool blending = c->src == FW_SRC_MOVE && c->has_next &&
+                          c->tau >= (tse_real)c->blend_k0 / (tse_real)c->cfg.segment_hz;
+    if (!blending)
+        c->has_next = false;
+    if (c->src == FW_SRC_MOVE && !blending && c->tau >= c->move.prof.T - c->move.prof.Ta) {
         /* Already on its final ramp, which stops within the limits: a second braking on top of
          * it would not. */
         return;
     }
-    c->has_next = false;
-    /* A move brakes against its own acceleration (it accelerates along the path, the braking
-     * opposes it), so the braking may take 90 % of the limit; a trajectory's acceleration is the
-     * host's, so it gets half. */
+    /* Moves and homing's joint move brake within the limit over their whole path (path_stop_time;
+     * the slide speeds of a blend's two moves at most add); a trajectory's path is the host's,
+     * still arriving, so its braking takes half the limit from the present speed. */
     c->stopping = true;
     c->stop_t = TSE_R(0.0);
-    c->stop_T = stop_time(c, c->src == FW_SRC_TRAJ ? TSE_R(0.45) : TSE_R(0.9));
+    if (c->src == FW_SRC_JOINT)
+        c->stop_T = path_stop_time(c, joint_v_peak(c), TSE_R(0.45));
+    else if (c->src == FW_SRC_MOVE)
+        c->stop_T = path_stop_time(c, c->move.v_peak + (blending ? c->next.v_peak : TSE_R(0.0)), TSE_R(0.4));
+    else
+        c->stop_T = stop_time(c, TSE_R(0.45));
 }
 
 void fw_fault_raise(fw_controller *c, fw_fault f)

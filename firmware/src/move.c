@@ -160,8 +160,10 @@ int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const
         const tse_real ka = tse_sqrt(ar);
         if (ka > k)
             k = ka;
-        if (k <= TSE_R(1.0))
+        if (k <= TSE_R(1.0)) {
+            mv->v_peak = vr * margin.slide_vmax;
             return 0;
+        }
         /* Sampling moves with the stretch, so aim a little beyond the measured need. */
         k *= TSE_R(1.02);
         fw_profile_stretch(&mv->prof, k);

@@ -1,6 +1,6 @@
 /* tse-sim: the controller firmware on Linux SocketCAN, driving a simulated plant.
  *
- *   tse-sim --iface vcan0 --node N [--params FILE] [--start S]
+ *   tse-sim --iface vcan0 --node N [--params FILE] [--start S] [--fault SPEC]
  *   tse-sim --write-params FILE
  *
  * The firmware runs unchanged on hal/posix: a 1 kHz control tick from timerfd, each followed by
@@ -8,7 +8,9 @@
  * physics is exact whatever the scheduler does).  State changes, faults and plant breaches are
  * logged on stdout; SIGINT or SIGTERM stops it cleanly.  The parameter file is the SI text of
  * host_tools/params (param_store.h): one it cannot read or the controller refuses stops it before
- * it starts (exit 2), and is never written. */
+ * it starts (exit 2), and is never written.  --fault puts hal/fault between the firmware and the
+ * bus, the switches and the plant's drives (fault_spec.h); its windows are logged as they open and
+ * close, and what it did when tse-sim stops. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <signal.h>
@@ -23,6 +25,7 @@
 #include "hal_posix/posix_hal.h"
 #include "text.h"
 #include "estop_watch.h"
+#include "fault_spec.h"
 #include "param_store.h"
 #include "param_text.h"
 
@@ -46,6 +49,11 @@ typedef struct {
     bool awaiting_first_step;
     uint64_t accepted_tick;   /* plant tick at which motion was accepted */
     estop_watch estop;        /* which steps came while an e-stop held */
+    bool faulty;              /* --fault given: the three wrappers below sit in the HAL */
+    fault_can fcan;
+    fault_inputs finputs;
+    fault_stepper fstepper;
+    uint8_t windows_open;     /* which fault windows held at the last control call */
 } sim;
 
 
@@ -61,9 +69,50 @@ static void log_pose(sim *s, const char *why)
                s->plant.pose[2], s->plant.pose[3], s->plant.pose[4], s->plant.pose[5]);
 }
 
+/* A line whenever one of --fault's windows opens or closes. */
+static void log_fault_windows(sim *s)
+{
+    if (!s->faulty)
+        return;
+    const struct {
+        const fault_window *w;
+        const char *what;
+    } win[] = {
+        {&s->fcan.cfg.silence, "host silence (every frame to the controller lost)"},
+        {&s->fcan.cfg.bus_off, "bus-off"},
+        {&s->finputs.cfg.estop, "e-stop input open"},
+        {&s->finputs.cfg.limit, "high-end limit switch pressed"},
+        {&s->fstepper.cfg.stall, "stalled slide (its steps not taken)"},
+    };
+    const uint64_t t[] = {fault_clock_us(&s->fcan.clock), fault_clock_us(&s->fcan.clock),
+                          fault_clock_us(&s->finputs.clock), fault_clock_us(&s->finputs.clock),
+                          fault_clock_us(&s->fstepper.clock)};
+    for (unsigned i = 0; i < sizeof win / sizeof win[0]; ++i) {
+        const bool open = fault_window_holds(win[i].w, t[i]);
+        const bool was = (s->windows_open >> i) & 1u;
+        if (open != was)
+            printf("tse-sim: fault: %s %s at t = %.3f s\n", win[i].what, open ? "begins" : "ends", (double)t[i] * 1e-6);
+        s->windows_open = (uint8_t)(open ? s->windows_open | (1u << i) : s->windows_open & ~(1u << i));
+    }
+}
+
+static void log_fault_counts(const sim *s)
+{
+    if (!s->faulty)
+        return;
+    const fault_can_stats *c = &s->fcan.stats;
+    printf("tse-sim: faults: of %u frames to the controller %u delivered; dropped %u, duplicated %u, reordered %u, "
+           "delayed %u, corrupted %u (payload %u, length %u, identifier %u), lost to silence %u, lost while "
+           "bus-off %u; %u sends refused while bus-off; %llu steps not taken\n",
+           c->received, c->delivered, c->faults[FAULT_DROP], c->faults[FAULT_DUP], c->faults[FAULT_REORDER],
+           c->faults[FAULT_DELAY], c->faults[FAULT_CORRUPT], c->corrupt_payload, c->corrupt_length, c->corrupt_id,
+           c->silenced, c->bus_off_lost, c->send_refused, (unsigned long long)s->fstepper.lost_total);
+}
+
 static void control(void *arg)
 {
     sim *s = arg;
+    log_fault_windows(s);
     fw_poll(&s->fw);
     fw_control_tick(&s->fw);
     if (s->plant.breaches & ~s->reported) {
@@ -114,7 +163,7 @@ static int usage(const char *why)
 {
     fprintf(stderr,
             "tse-sim: %s\n"
-            "usage: tse-sim --iface IFACE --node N [--params FILE] [--start S]\n"
+            "usage: tse-sim --iface IFACE --node N [--params FILE] [--start S] [--fault SPEC]\n"
             "       tse-sim --write-params FILE\n"
             "  --params FILE        the controller's parameters, as 'name = value' text in SI units\n"
             "                       (m, rad, m/s, ...; or as the name says: _ms, _ns, _kbps, _deg);\n"
@@ -125,8 +174,9 @@ static int usage(const char *why)
             "  --write-params FILE  write the defaults, one commented line per parameter, to FILE\n"
             "                       as a template and exit (refused if FILE exists)\n"
             "  --start S            slide positions at power-up [m] (default 0.05: below the homing\n"
-            "                       switches at 0.2 m, so homing first leaves them)\n",
-            why);
+            "                       switches at 0.2 m, so homing first leaves them)\n"
+            "%s",
+            why, fault_spec_help);
     return 2;
 }
 
@@ -151,7 +201,8 @@ static int write_template(const char *path)
 
 int main(int argc, char **argv)
 {
-    const char *iface = NULL, *params = NULL, *write_params = NULL;
+    const char *iface = NULL, *params = NULL, *write_params = NULL, *fault = NULL;
+    static fault_plan plan;
     long node = -1;
     double start = 0.05;
     for (int i = 1; i < argc; ++i) {
@@ -170,6 +221,13 @@ int main(int argc, char **argv)
             params = argv[++i];
         } else if (!strcmp(argv[i], "--write-params") && v) {
             write_params = argv[++i];
+        } else if (!strcmp(argv[i], "--fault") && v) {
+            char err[256];
+            fault = argv[++i];
+            if (fault_spec_parse(fault, &plan, err, sizeof err) != 0) {
+                fprintf(stderr, "tse-sim: --fault: %s\n", err);
+                return usage("bad --fault");
+            }
         } else if (!strcmp(argv[i], "--start") && v) {
             if (text_number(argv[++i], &start) != 0 || !(start > -0.01 && start < 0.91))
                 return usage("--start takes a slide position in metres inside the stroke");
@@ -199,6 +257,16 @@ int main(int argc, char **argv)
     hal.inputs = plant_inputs(&s.plant);
     hal.clock = posix_clock_hal();
     hal.storage = sim_param_store_hal(&store);
+    if (fault) {
+        /* The firmware sees the bus, the switches and the drives through the fault layer. */
+        s.faulty = true;
+        fault_can_init(&s.fcan, &plan.can, hal.can, hal.clock);
+        fault_inputs_init(&s.finputs, &plan.inputs, hal.inputs, hal.clock);
+        fault_stepper_init(&s.fstepper, &plan.stepper, hal.stepper, hal.clock);
+        hal.can = fault_can_hal(&s.fcan);
+        hal.inputs = fault_inputs_hal(&s.finputs);
+        hal.stepper = fault_stepper_hal(&s.fstepper);
+    }
     const fw_config cfg = {(uint8_t)node, CONTROL_HZ, STEP_HZ, false};
     if (fw_init(&s.fw, &hal, &cfg) != 0) {
         fprintf(stderr, "tse-sim: the controller did not start\n");
@@ -238,10 +306,13 @@ int main(int argc, char **argv)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
     printf("tse-sim: node %ld on %s, %u Hz control, %u Hz steps\n", node, iface, CONTROL_HZ, STEP_HZ);
+    if (fault)
+        printf("tse-sim: injecting faults: %s\n", fault);
     fflush(stdout);
     hal_ticker t = posix_ticker_hal(&ticker);
     const int rc = t.start(t.ctx, CONTROL_HZ, control, STEP_HZ, step, &s);
     posix_can_close(&can);
+    log_fault_counts(&s);
     printf("tse-sim: stopped (%llu late periods, %llu pulses)\n", (unsigned long long)ticker.overruns,
            (unsigned long long)s.plant.pulses);
     return rc == 0 ? 0 : 1;

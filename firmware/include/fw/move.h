@@ -38,6 +38,7 @@ typedef struct {
     fw_profile prof;    /* of u, D = 1 */
     uint32_t segments;  /* control segments; the last one ends exactly at prof.T */
     tse_real stretch;   /* time factor the slide limits imposed (1: none) */
+    tse_real v_peak;    /* the fastest any slide goes along it [m/s], as validation found */
     tse_real q_from[6]; /* slides at the start */
     tse_real q_end[6];  /* slides at the end, as validation solved them */
 } fw_move;

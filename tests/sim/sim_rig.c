@@ -1,0 +1,259 @@
+/* The simulator's parts composed for fault tests (sim_rig.h). */
+#include "sim_rig.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+void rig_boot(sim_rig *r, double start_m)
+{
+    memset(r, 0, sizeof *r);
+    fw_hal hal;
+    fake_hal_init(&r->bus, &hal);
+    const fault_can_config no_can = {.delay_us = 20000}; /* tse-sim's default, for tests that delay */
+    const fault_inputs_config no_inputs = {0};
+    const fault_stepper_config no_stepper = {0};
+    fault_can_init(&r->can, &no_can, hal.can, hal.clock);
+    fault_inputs_init(&r->inputs, &no_inputs, plant_inputs(&r->plant), hal.clock);
+    fault_stepper_init(&r->stepper, &no_stepper, plant_stepper(&r->plant), hal.clock);
+    hal.can = fault_can_hal(&r->can);
+    hal.inputs = r->in = fault_inputs_hal(&r->inputs);
+    hal.stepper = fault_stepper_hal(&r->stepper);
+    const fw_config cfg = {1, RIG_CONTROL_HZ, RIG_STEP_HZ, false};
+    assert_int_equal(fw_init(&r->fw, &hal, &cfg), 0);
+    /* The plant is the machine the default parameters describe (as tse-sim builds it). */
+    const fw_param_set *fp = &r->fw.params;
+    plant_config pc = {(double)fp->v[FP_STEPS_PER_M], fp->v[FP_SLIDE_VMAX] * 1e-6, fp->v[FP_SLIDE_AMAX] * 1e-6, 0.05,
+                       RIG_STEP_HZ, r->fw.sg.cfg.min_step_interval, (uint32_t)fp->v[FP_STEP_PULSE_NS],
+                       (uint32_t)fp->v[FP_DIR_SETUP_NS], {0}};
+    for (int k = 0; k < 6; ++k)
+        pc.home_sw[k] = fp->v[FP_HOME_SW_1 + k] * 1e-6;
+    const double s0[6] = {start_m, start_m, start_m, start_m, start_m, start_m};
+    plant_init(&r->plant, &pc, &r->fw.geom, s0);
+    r->host_alive = true;
+    r->seq = 1;
+}
+
+static bool moves_robot(fw_state s)
+{
+    return s == FW_STATE_HOMING || s == FW_STATE_MOVING || s == FW_STATE_STOPPING;
+}
+
+static void check(sim_rig *r, fw_state s0, bool estop_open, uint64_t emitted0)
+{
+    const fw_controller *c = &r->fw;
+    const double t = (double)r->bus.now_us * 1e-6;
+    if (r->plant.breaches & ~r->allowed_breaches)
+        fail_msg("t = %.3f s: plant: %s (breaches 0x%x; state %d, fault %d)", t, r->plant.first_breach,
+                 r->plant.breaches, c->state, c->fault);
+    if ((unsigned)c->state >= FW_STATE_COUNT || (unsigned)c->fault >= FW_FAULT_COUNT)
+        fail_msg("t = %.3f s: state %d, fault %d", t, c->state, c->fault);
+    if (c->drives_on != r->plant.enabled)
+        fail_msg("t = %.3f s: the controller believes the drives %s, they are %s", t, c->drives_on ? "on" : "off",
+                 r->plant.enabled ? "on" : "off");
+    if ((c->state == FW_STATE_DISABLED || c->state == FW_STATE_FAULT || c->state == FW_STATE_ESTOP) &&
+        r->plant.enabled)
+        fail_msg("t = %.3f s: drives on in state %d", t, c->state);
+    const uint64_t emitted = r->plant.pulses + r->stepper.lost_total - emitted0;
+    if (emitted && !moves_robot(s0) && !moves_robot(c->state))
+        fail_msg("t = %.3f s: %llu steps from state %d to %d", t, (unsigned long long)emitted, s0, c->state);
+    if (estop_open && (emitted || c->state != FW_STATE_ESTOP))
+        fail_msg("t = %.3f s: e-stop input open: %llu steps, state %d", t, (unsigned long long)emitted, c->state);
+    if (s0 == FW_STATE_HOMING || c->state == FW_STATE_HOMING) {
+        r->offset_known = false; /* homing sets the zero */
+        return;
+    }
+    int32_t pos[6];
+    stepgen_positions(&c->sg, pos);
+    for (int k = 0; k < 6; ++k) {
+        const int64_t d = (int64_t)pos[k] - (r->plant.steps[k] + r->stepper.lost[k]);
+        if (r->offset_known && d != r->offset[k])
+            fail_msg("t = %.3f s: slide %d: the controller's count moved %lld steps away from the pulses it gave", t,
+                     k + 1, (long long)(d - r->offset[k]));
+        r->offset[k] = d;
+    }
+    r->offset_known = true;
+}
+
+static void collect(sim_rig *r)
+{
+    for (unsigned i = 0; i < r->bus.tx_count; ++i) {
+        const uint8_t fn = (uint8_t)(r->bus.tx[i].id >> PROTO_NODE_BITS);
+        if (fn != proto_table[PM_ACK].function && fn != proto_table[PM_REJECT].function &&
+            fn != proto_table[PM_STATUS].function)
+            continue;
+        rig_frame *l = &r->log[r->nlog++ % RIG_LOG];
+        l->t_us = r->bus.now_us;
+        l->f = r->bus.tx[i];
+    }
+    r->bus.tx_count = 0;
+}
+
+void rig_tick(sim_rig *r)
+{
+    const bool estop_open = r->in.estop(r->in.ctx); /* as this period's control tick reads it */
+    const fw_state s0 = r->fw.state;
+    const uint64_t emitted0 = r->plant.pulses + r->stepper.lost_total;
+    fw_poll(&r->fw);
+    if (r->after_poll)
+        r->after_poll(r->after_poll_arg);
+    fw_control_tick(&r->fw);
+    for (uint32_t t = 0; t < RIG_STEP_HZ / RIG_CONTROL_HZ; ++t) {
+        fw_step_tick(&r->fw);
+        plant_tick(&r->plant);
+    }
+    r->bus.now_us += 1000000u / RIG_CONTROL_HZ;
+    ++r->ticks;
+    ++r->state_ms[r->fw.state < FW_STATE_COUNT ? r->fw.state : 0];
+    collect(r);
+    check(r, s0, estop_open, emitted0);
+}
+
+void rig_run(sim_rig *r, uint32_t ms)
+{
+    for (uint32_t m = 0; m < ms; ++m) {
+        if (r->host_alive && r->ticks % 10 == 0) {
+            const int32_t hb[1] = {(int32_t)(r->ticks / 10 % 256)};
+            rig_send(r, PM_HOST_HEARTBEAT, hb);
+        }
+        rig_tick(r);
+    }
+}
+
+bool rig_until(sim_rig *r, fw_state s, uint32_t max_ms)
+{
+    for (uint32_t m = 0; m < max_ms && r->fw.state != s; ++m)
+        rig_run(r, 1);
+    return r->fw.state == s;
+}
+
+void rig_send(sim_rig *r, proto_msg m, const int32_t *v)
+{
+    fake_send_msg(&r->bus, 1, m, v);
+}
+
+uint8_t rig_cmd(sim_rig *r, proto_msg m)
+{
+    const uint8_t s = r->seq++;
+    const int32_t v[1] = {s};
+    rig_send(r, m, v);
+    return s;
+}
+
+void rig_stage(sim_rig *r, uint8_t s, const double p[6])
+{
+    const int32_t a[3] = {s, (int32_t)lround(p[0] * 1e6), (int32_t)lround(p[1] * 1e6)};
+    const int32_t b[3] = {s, (int32_t)lround(p[2] * 1e6), (int32_t)lround(p[3] * 1e6)};
+    const int32_t c[3] = {s, (int32_t)lround(p[4] * 1e6), (int32_t)lround(p[5] * 1e6)};
+    rig_send(r, PM_POSE_A, a);
+    rig_send(r, PM_POSE_B, b);
+    rig_send(r, PM_POSE_C, c);
+}
+
+uint8_t rig_move(sim_rig *r, const double p[6], int32_t ms)
+{
+    const uint8_t s = r->seq++;
+    rig_stage(r, s, p);
+    const int32_t m[3] = {s, 0, ms};
+    rig_send(r, PM_MOVE_COMMIT, m);
+    return s;
+}
+
+void rig_home(sim_rig *r)
+{
+    const unsigned from = r->nlog;
+    const uint8_t e = rig_cmd(r, PM_ENABLE);
+    rig_run(r, 10);
+    assert_int_equal(rig_answer(r, from, proto_table[PM_ENABLE].function, e, NULL), 'a');
+    const uint8_t h = rig_cmd(r, PM_HOME);
+    rig_run(r, 10);
+    assert_int_equal(rig_answer(r, from, proto_table[PM_HOME].function, h, NULL), 'a');
+    assert_int_equal(r->fw.state, FW_STATE_HOMING);
+    assert_true(rig_until(r, FW_STATE_IDLE, 120000));
+    assert_true(r->fw.homed);
+    for (int k = 0; k < 6; ++k)
+        if (llabs((long long)rig_count_error(r, k)) > 1)
+            fail_msg("slide %d: after homing the controller counts %lld steps from the truth", k + 1,
+                     (long long)rig_count_error(r, k));
+}
+
+static const rig_frame *logged(const sim_rig *r, unsigned i)
+{
+    return &r->log[i % RIG_LOG];
+}
+
+static void in_log(const sim_rig *r, unsigned from)
+{
+    if (from + RIG_LOG < r->nlog)
+        fail_msg("log index %u is no longer kept (%u received)", from, r->nlog);
+}
+
+char rig_answer(const sim_rig *r, unsigned from, uint8_t function, int seq, uint8_t *reason)
+{
+    in_log(r, from);
+    for (unsigned i = from; i < r->nlog; ++i) {
+        const hal_can_frame *f = &logged(r, i)->f;
+        const uint8_t fn = (uint8_t)(f->id >> PROTO_NODE_BITS);
+        if (f->data[0] != function || (seq >= 0 && f->data[1] != (uint8_t)seq))
+            continue;
+        if (fn == proto_table[PM_ACK].function)
+            return 'a';
+        if (fn == proto_table[PM_REJECT].function) {
+            if (reason)
+                *reason = f->data[2];
+            return 'r';
+        }
+    }
+    return 0;
+}
+
+unsigned rig_answers(const sim_rig *r, unsigned from, uint8_t function)
+{
+    in_log(r, from);
+    unsigned n = 0;
+    for (unsigned i = from; i < r->nlog; ++i) {
+        const hal_can_frame *f = &logged(r, i)->f;
+        const uint8_t fn = (uint8_t)(f->id >> PROTO_NODE_BITS);
+        if ((fn == proto_table[PM_ACK].function || fn == proto_table[PM_REJECT].function) && f->data[0] == function)
+            ++n;
+    }
+    return n;
+}
+
+proto_message rig_status(const sim_rig *r, unsigned from)
+{
+    in_log(r, from);
+    for (unsigned i = r->nlog; i-- > from;) {
+        const hal_can_frame *f = &logged(r, i)->f;
+        if ((f->id >> PROTO_NODE_BITS) != proto_table[PM_STATUS].function)
+            continue;
+        proto_message m;
+        assert_int_equal(proto_decode(f, PROTO_TO_HOST, &m).reason, FW_REASON_NONE);
+        return m;
+    }
+    fail_msg("no STATUS since log index %u", from);
+    proto_message none = {0};
+    return none;
+}
+
+bool rig_plate_at(sim_rig *r, const double want[6])
+{
+    if (!plant_update_pose(&r->plant))
+        return false;
+    for (int k = 0; k < 6; ++k)
+        if (fabs(r->plant.pose[k] - want[k]) > (k < 3 ? 10e-6 : 1e-5))
+            return false;
+    return true;
+}
+
+int64_t rig_count_error(const sim_rig *r, int k)
+{
+    int32_t pos[6];
+    stepgen_positions(&r->fw.sg, pos);
+    return (int64_t)pos[k] - r->plant.steps[k];
+}
