@@ -656,7 +656,7 @@ static void faults_ms(void)
     fault_inputs_config *ic = &R.inputs.cfg;
     const uint32_t wd = (uint32_t)R.fw.params.v[FP_WATCHDOG_MS];
     if (!open_window(&cc->silence, t) && due(W_SILENCE, 1.0 / 60000, t)) {
-        const bool past = chance(0.5) || t >= last_start[W_SILENCE_PAST_WD] + 120000000u;
+        const bool past = chance(0.5) || (n.windows[W_SILENCE_PAST_WD] == 0 && n.windows[W_SILENCE] % 2 == 1);
         const uint32_t ms = past ? wd + 10 + below(1000) : 50 + below(wd - 70);
         cc->silence = (fault_window){t, t + 1000u * ms};
         started(W_SILENCE, t);
@@ -664,7 +664,7 @@ static void faults_ms(void)
             started(W_SILENCE_PAST_WD, t);
     }
     if (!open_window(&cc->bus_off, t) && due(W_BUS_OFF, 1.0 / 100000, t)) {
-        if (chance(0.3) || t >= last_start[W_BUS_OFF_BETWEEN] + 120000000u) {
+        if (chance(0.3) || (n.windows[W_BUS_OFF_BETWEEN] == 0 && n.windows[W_BUS_OFF] % 2 == 1)) {
             /* begun and ended between two control ticks' looks */
             const uint64_t from = t + 100 + below(400);
             cc->bus_off = (fault_window){from, from + 100 + below(400)};
