@@ -81,6 +81,11 @@ static bool newer(uint8_t seq, uint8_t than)
 static void stage(fw_controller *c, const proto_message *m, uint8_t function)
 {
     const uint8_t seq = (uint8_t)m->v[0];
+    /* Both refusals before anything changes: a refused part leaves the staged pose as it was. */
+    if (c->any_commit && !newer(seq, c->last_seq)) {
+        fw_reject(c, function, seq, FW_REASON_STALE, 0, NULL);
+        return;
+    }
     if (c->stage_have != 0 && seq != c->stage_seq) {
         /* A part of an older pose arriving late must not displace the one being staged. */
         if (!newer(seq, c->stage_seq)) {
@@ -88,10 +93,6 @@ static void stage(fw_controller *c, const proto_message *m, uint8_t function)
             return;
         }
         c->stage_have = 0;
-    }
-    if (c->any_commit && !newer(seq, c->last_seq)) {
-        fw_reject(c, function, seq, FW_REASON_STALE, 0, NULL);
-        return;
     }
     const int part = (int)m->msg - PM_POSE_A;
     c->stage_seq = seq;
@@ -181,8 +182,10 @@ static void traj_commit(fw_controller *c, const proto_message *m, uint8_t functi
     fw_plan_result why;
     if (fw_traj_push(&c->traj, &c->geom, &c->lim, to, (uint32_t)m->v[1], (m->v[2] & 1) != 0, &why) != 0) {
         fw_reject(c, function, seq, why.reason, 0, &why);
-        if (why.reason != FW_REASON_QUEUE_FULL)
-            accept_commit(c, seq); /* spent, as for moves; a full queue may be retried */
+        /* Refused for its content (the pose, its timing), the number is spent, as for moves; a
+         * full queue, or a trajectory that takes no more points (state), changes nothing. */
+        if (why.reason != FW_REASON_QUEUE_FULL && why.reason != FW_REASON_STATE)
+            accept_commit(c, seq);
         return;
     }
     accept_commit(c, seq);
@@ -225,6 +228,17 @@ static void param_save(fw_controller *c, uint8_t function)
     fw_ack(c, function, 0, 0);
 }
 
+/* The sequence number of a frame refused by the codec: a field out of range leaves its sequence
+ * number the frame's (a u8, never itself out of range), and the host matches the REJECT by it; a
+ * frame of another length or an unknown function has none. */
+static uint8_t range_seq(const hal_can_frame *f, uint8_t function, proto_error e)
+{
+    const proto_def *d = proto_lookup(function, PROTO_TO_CONTROLLER);
+    if (e.reason != FW_REASON_RANGE || !d || d->nfields == 0 || strcmp(d->fields[0].name, "seq") != 0)
+        return 0;
+    return f->data[d->fields[0].offset];
+}
+
 void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
 {
     /* An e-stop interrupt during the poll: no command is taken against the state before it. */
@@ -244,7 +258,7 @@ void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
     if (broadcast && !(e.reason == FW_REASON_NONE && (m.msg == PM_ESTOP || m.msg == PM_STOP)))
         return; /* only stops are honoured from node 0, and nothing answers a broadcast */
     if (e.reason != FW_REASON_NONE) {
-        fw_reject(c, function, 0, e.reason, e.field, NULL);
+        fw_reject(c, function, range_seq(f, function, e), e.reason, e.field, NULL);
         return;
     }
     const bool has_seq = proto_table[m.msg].nfields > 0 && strcmp(proto_table[m.msg].fields[0].name, "seq") == 0;

@@ -358,7 +358,9 @@ static void run_source(fw_controller *c)
         /* On the grid the time is exact in microseconds, as validation sampled it. */
         uint64_t tau_us = c->stopping ? (uint64_t)(tau * TSE_R(1e6) + TSE_R(0.5))
                                       : (uint64_t)grid * (1000000u / c->cfg.segment_hz);
-        if (last && c->traj.closed)
+        /* The last point exactly, when the path has reached it; a stop ramp that ends before it
+         * ends where the ramp brought the slides. */
+        if (last && c->traj.closed && tau >= end)
             tau_us = fw_traj_end_us(&c->traj);
         inside = fw_traj_pose(&c->traj, tau_us, pose);
     }
@@ -516,6 +518,18 @@ static void send_status(fw_controller *c)
     fw_send(c, PM_STATUS, v);
 }
 
+/* A slide position in the wire's nanometres.  The stroke may reach 5 m, beyond what an i32 of
+ * nanometres holds (2.147 m): past it the field's end is sent, not an undefined conversion. */
+static int32_t wire_nm(tse_real s)
+{
+    const tse_real nm = s * TSE_R(1e9);
+    if (nm >= TSE_R(2147483647.0))
+        return INT32_MAX;
+    if (nm <= TSE_R(-2147483648.0))
+        return INT32_MIN;
+    return (int32_t)nm;
+}
+
 static void send_telemetry(fw_controller *c)
 {
     int32_t steps[6];
@@ -525,7 +539,7 @@ static void send_telemetry(fw_controller *c)
     for (int k = 0; k < 6; ++k)
         q[k] = (tse_real)steps[k] / spm;
     for (int k = 0; k < 3; ++k) {
-        const int32_t v[2] = {(int32_t)(q[2 * k] * TSE_R(1e9)), (int32_t)(q[2 * k + 1] * TSE_R(1e9))};
+        const int32_t v[2] = {wire_nm(q[2 * k]), wire_nm(q[2 * k + 1])};
         fw_send(c, (proto_msg)(PM_SLIDES_A + k), v);
     }
     if (!c->homed)

@@ -203,6 +203,10 @@ void fw_homing_tick(fw_controller *c)
     const tse_real spm = (tse_real)c->params.v[FP_STEPS_PER_M];
     home_speeds hs;
     hs.v_home = (tse_real)c->params.v[FP_HOMING_SPEED] * TSE_R(1e-6);
+    /* Homing moves slides like any motion: within the slide speed limit and what the step
+     * generator can step (both in lim.slide_vmax), however fast homing_speed asks. */
+    if (hs.v_home > c->lim.slide_vmax)
+        hs.v_home = c->lim.slide_vmax;
     hs.creep = CREEP_FRACTION * hs.v_home;
     const tse_real half_step_per_tick = TSE_R(0.5) * (tse_real)c->cfg.segment_hz / spm;
     if (hs.creep > half_step_per_tick)

@@ -31,9 +31,11 @@ int fw_stepgen_config_from_params(const fw_param_set *s, uint32_t step_hz, uint3
     uint64_t setup = ((uint64_t)dir_ns * step_hz + 999999999u) / 1000000000u;
     setup = dir_ns == 0 ? 1u : setup + 1u;
     const uint32_t per_segment = step_hz / segment_hz;
-    if (setup >= per_segment || per_segment > UINT32_MAX / 4u)
-        return -1; /* no room for a step in a segment that changes direction; or the generator's
-                    * arithmetic would overflow */
+    /* No room for a step in a segment that changes direction (after the set-up, less than one
+     * step interval left: the slides' speed limit would be zero); or the generator's arithmetic
+     * would overflow. */
+    if (setup >= per_segment || (per_segment - setup) / interval == 0 || per_segment > UINT32_MAX / 4u)
+        return -1;
     sc->ticks_per_segment = per_segment;
     sc->dir_setup_ticks = (uint32_t)setup;
     sc->min_step_interval = interval;

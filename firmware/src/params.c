@@ -36,7 +36,8 @@ const fw_param_def fw_param_table[FP_COUNT] = {
     [FP_WATCHDOG_MS] = {"watchdog_ms", "ms", 0, 60000, 500, "host heartbeat timeout (0: off)"},
     [FP_STATUS_MS] = {"status_ms", "ms", 10, 10000, 100, "STATUS period"},
     [FP_TELEMETRY_MS] = {"telemetry_ms", "ms", 0, 10000, 50, "SLIDES and FK period (0: off)"},
-    [FP_HOMING_SPEED] = {"homing_speed", "um/s", 100, 500000, 20000, "homing speed"},
+    [FP_HOMING_SPEED] = {"homing_speed", "um/s", 100, 500000, 20000,
+                         "homing speed (held to the slide speed limit)"},
     [FP_HOMING_BACKOFF] = {"homing_backoff", "um", 0, 100000, 2000,
                            "how far a slide that starts on its switch goes on past the release "
                            "before seeking the switch"},

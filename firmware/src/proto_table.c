@@ -163,7 +163,8 @@ const proto_def proto_table[PM_COUNT] = {
      "Heartbeat of the controller, every status period."},
     {PM_SLIDES_A, 0x21, "SLIDES_A", PROTO_TO_HOST, 8, 2,
      {FULL_I32("s_a1", 0, "m", 1e-9, "slide A1"), FULL_I32("s_b1", 4, "m", 1e-9, "slide B1")},
-     "Commanded slide positions (the steps emitted), every telemetry period."},
+     "Commanded slide positions (the steps emitted), every telemetry period. A slide beyond "
+     "2.147483647 m (the stroke may reach 5 m) is sent as the field's end."},
     {PM_SLIDES_B, 0x22, "SLIDES_B", PROTO_TO_HOST, 8, 2,
      {FULL_I32("s_a2", 0, "m", 1e-9, "slide A2"), FULL_I32("s_b2", 4, "m", 1e-9, "slide B2")},
      "Slides of scissor 2."},

@@ -1,0 +1,55 @@
+/* What the controller fuzz target's oracle keeps between calls, and what its two halves share
+ * (oracle.c: the lifecycle, the outputs and the promises of every moment; answers.c: the answers
+ * to one frame).  Not the target's contract: that is oracle.h. */
+#ifndef FUZZ_CONTROLLER_ORACLE_MODEL_H
+#define FUZZ_CONTROLLER_ORACLE_MODEL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "rig.h"
+#include "snapshot.h"
+#include "wire.h"
+
+/* The model: what the host has been told, as the answers said, and the frame being fed. */
+typedef struct oracle_model {
+    fw_param_set params, saved; /* in force, and in the flash, as the answers said */
+    fw_state state;             /* as last seen */
+    bool homed;
+    bool estop_cut;             /* the e-stop interrupt fired, ESTOP not yet entered */
+    bool cut_inside;            /* ... inside the work that runs now, which may not complete it */
+    /* The staged pose as docs/protocol.md's staging rules and the refusals make it. */
+    uint8_t stage_seq, stage_have;
+    int32_t stage_v[6];
+    bool any_commit;
+    uint8_t last_commit;
+    bool traj_running, traj_stopped;
+    uint64_t last_alive_us;     /* the host's last heartbeat, or ENABLE */
+    fw_fault seen_fault, seen_pending;
+    bool status_seen;
+    uint16_t status_counter;
+    unsigned queue_capacity;    /* depth + free, as the first answer said */
+    /* The frame being fed. */
+    wire_frame wf;
+    snapshot before;
+    bool estop_open_before, storage_fails_before;
+    bool spent_now;             /* it was a commit refused for its content */
+    bool cut_pending;           /* an e-stop interrupt waits to be completed as the frame comes */
+    /* Slides whose homing saw a low switch the rig forced pressed: a lying switch gives the
+     * controller a zero it cannot know is wrong (once homed it catches a lie of more than
+     * 0.5 mm, not less), so their positions are not held to the plant's until homed again. */
+    uint8_t zero_suspect;
+} oracle_model;
+
+/* The answers and parameter values one poll sent (the last of each kind). */
+typedef struct {
+    int n_ack, n_rej, n_pv;
+    int64_t ack[PROTO_MAX_FIELDS], rej[PROTO_MAX_FIELDS], pv[PROTO_MAX_FIELDS];
+} oracle_outputs;
+
+/* Judges the answers `out` to the frame o->wf, fed with the controller in o->before, and updates
+ * the model from them.  hooked: an e-stop interrupt came inside the frame's poll, or was
+ * completed by it before the frame: the state the frame met is then not known for sure. */
+void oracle_judge_answers(oracle_model *o, rig *r, const oracle_outputs *out, bool hooked);
+
+#endif

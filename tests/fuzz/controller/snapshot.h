@@ -1,0 +1,63 @@
+/* What a refused frame must leave as it was (docs/protocol.md: "Nothing of a refused command is
+ * applied"): the controller's observable state, taken before a frame is fed and compared after its
+ * REJECT.
+ *
+ * Compared: the state, the latched and pending faults, homed, the drives (as the controller holds
+ * them and as the enable output stands), the parameters and the limits derived from them, the
+ * driver timing programmed and the flash, the staged pose, the last accepted commit, the motion
+ * (source, the running move's target and timing, a blended successor, the stop ramp), the
+ * trajectory queue (depth, end time, open or closed while a trajectory runs), homing's phase, the
+ * step generator's timing, queue and positions, the setpoint, the watchdog's last heartbeat.
+ * Not compared: the STATUS counter and the times of the next STATUS and telemetry (periodic output:
+ * the poll after the frame may legitimately send them), and the bus-off and overrun counts seen
+ * (only the control tick reads those, and none runs between the two snapshots).  Scratch that a
+ * refusal may overwrite but nothing reads is left out: the successor move's plan while no
+ * successor is queued, and the trajectory's bookkeeping while no trajectory runs (an idle
+ * controller's next TRAJ_COMMIT starts a new one from the current pose). */
+#ifndef FUZZ_CONTROLLER_SNAPSHOT_H
+#define FUZZ_CONTROLLER_SNAPSHOT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "rig.h"
+
+typedef struct {
+    fw_state state;
+    fw_fault fault, pending_fault;
+    bool homed, drives_on, enable_out, pose_known;
+    fw_param_set params;
+    fw_limits lim;
+    uint32_t pulse_ns, dir_setup_ns, timing_calls;
+    int storage_len;
+    uint8_t storage[256];
+    uint8_t stage_seq, stage_have;
+    int32_t stage_v[6];
+    uint8_t last_seq;
+    bool any_commit;
+    fw_source src;
+    bool has_next, stopping;
+    tse_real move_to[6], move_T, next_to[6], next_T, stop_t, stop_T, tau;
+    uint32_t blend_k0, segments_run;
+    unsigned traj_depth;
+    uint64_t traj_end_us;
+    bool traj_closed;
+    bool home_active, home_abort;
+    fw_home_phase home_phase;
+    uint8_t home_axis[6];
+    stepgen_config sg_cfg;
+    unsigned sg_queued;
+    bool sg_idle;
+    int32_t sg_pos[6];
+    tse_real q[6], pose[6];
+    uint64_t last_heartbeat_us;
+} snapshot;
+
+void snapshot_take(const rig *r, snapshot *s);
+
+/* Whether the two snapshots agree.  spent: the frame was a commit refused for its content, which
+ * docs/protocol.md says spends its number: last_seq, any_commit and the staged parts may then
+ * differ (the oracle checks them against its own model).  Names the first difference. */
+bool snapshot_same(const snapshot *a, const snapshot *b, bool spent, const char **what);
+
+#endif
