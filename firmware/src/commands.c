@@ -86,14 +86,12 @@ static void stage(fw_controller *c, const proto_message *m, uint8_t function)
         fw_reject(c, function, seq, FW_REASON_STALE, 0, NULL);
         return;
     }
-    if (c->stage_have != 0 && seq != c->stage_seq) {
-        /* A part of an older pose arriving late must not displace the one being staged. */
-        if (!newer(seq, c->stage_seq)) {
-            fw_reject(c, function, seq, FW_REASON_STALE, 0, NULL);
-            return;
-        }
+    /* A part of another number starts the staging afresh, whichever of the two numbers is ahead:
+     * parts of two numbers never mix, because a commit needs all three under its own number, and
+     * a stray part staged under a number ahead of the host's (a second tool, a corrupted frame)
+     * must not refuse the host's parts until a restart, as it would if it could not be displaced. */
+    if (c->stage_have != 0 && seq != c->stage_seq)
         c->stage_have = 0;
-    }
     const int part = (int)m->msg - PM_POSE_A;
     c->stage_seq = seq;
     c->stage_have |= (uint8_t)(1u << part);

@@ -32,7 +32,10 @@ static void intro(FILE *out)
     fprintf(out, "A pose is staged in `POSE_A`, `POSE_B`, `POSE_C` under one sequence number and applied by a\n"
                  "commit (`MOVE_COMMIT` or `TRAJ_COMMIT`) carrying the same number: only when all three parts of\n"
                  "that number arrived (in any order), and only when the number is newer than the last accepted\n"
-                 "commit (modulo 256, ahead by 1..127). A part of an older number never displaces a newer one.\n"
+                 "commit (modulo 256, ahead by 1..127). A part under another number than the one being staged\n"
+                 "starts the staging afresh (so a late part of an abandoned pose makes the next commit\n"
+                 "`incomplete`, and a stray part can never lock the host out); a part whose number is not\n"
+                 "newer than the last accepted commit is refused `stale` and changes nothing.\n"
                  "A commit refused for its content spends its number.\n\n");
     fprintf(out, "In the message tables, a field's physical value is its raw value times its \"one raw count\";\n"
                  "`-` marks a plain number or code.\n");

@@ -237,14 +237,23 @@ static void test_staging_is_atomic(void **state)
     send(PM_POSE_C, c2);
     send(PM_POSE_A, a2);
     send(PM_POSE_B, b2);
-    /* A late part of the older sequence must not displace it. */
+    /* A late part of an abandoned, older sequence (still newer than the last commit) starts the
+     * staging afresh: the commit of s is then incomplete, never a mix, and a restaging works. */
     const int32_t late[3] = {(uint8_t)(s - 1), 0, 0};
     from = F.tx_count;
     send(PM_POSE_A, late);
     fw_poll(&C);
-    assert_int_equal(answer(from, 0x0A, &reason), 'r');
-    assert_int_equal(reason, FW_REASON_STALE);
+    assert_int_equal(answer(from, 0x0A, &reason), 0);
     const int32_t m2[3] = {s, 0, 1000};
+    from = F.tx_count;
+    send(PM_MOVE_COMMIT, m2);
+    fw_poll(&C);
+    assert_int_equal(answer(from, 0x0D, &reason), 'r');
+    assert_int_equal(reason, FW_REASON_INCOMPLETE);
+    assert_int_equal(C.state, FW_STATE_IDLE);
+    send(PM_POSE_C, c2);
+    send(PM_POSE_A, a2);
+    send(PM_POSE_B, b2);
     from = F.tx_count;
     send(PM_MOVE_COMMIT, m2);
     fw_poll(&C);
@@ -262,6 +271,33 @@ static void test_staging_is_atomic(void **state)
     fw_poll(&C);
     assert_int_equal(answer(from, 0x0D, &reason), 'r');
     assert_int_equal(reason, FW_REASON_STALE);
+}
+
+/* A single stray part staged under a number ahead of the host's (a second tool, a corrupted
+ * frame) must not lock the host out: the host numbers its poses one past the last accepted
+ * commit, as tsectl does, and its parts and commit are accepted.  (Before, a part could not
+ * displace a newer-numbered one, and every later move was refused until a restart.) */
+static void test_stray_part_ahead_does_not_block_the_host(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    const double target[6] = {0.05, 0.02, 1.05, 0, 0, 0.1};
+    for (int round = 0; round < 3; ++round) {
+        const uint8_t host_seq = (uint8_t)(C.last_seq + 1u);
+        const int32_t stray[3] = {(uint8_t)(host_seq + 1u + (unsigned)round * 60u), 1000, 2000};
+        send(PM_POSE_B, stray);
+        fw_poll(&C);
+        stage(host_seq, round % 2 ? NEAR : target);
+        const int32_t m[3] = {host_seq, 0, 500};
+        const unsigned from = F.tx_count;
+        send(PM_MOVE_COMMIT, m);
+        fw_poll(&C);
+        assert_int_equal(answer(from, 0x0D, NULL), 'a');
+        for (int i = 0; i < 50 && C.state != FW_STATE_IDLE; ++i)
+            run(100);
+        assert_int_equal(C.state, FW_STATE_IDLE);
+        assert_int_equal(C.last_seq, host_seq);
+    }
 }
 
 static void test_unreachable_pose_rejected_without_motion(void **state)
@@ -816,6 +852,7 @@ int main(void)
         cmocka_unit_test(test_blended_moves),
         cmocka_unit_test(test_no_blend),
         cmocka_unit_test(test_staging_is_atomic),
+        cmocka_unit_test(test_stray_part_ahead_does_not_block_the_host),
         cmocka_unit_test(test_unreachable_pose_rejected_without_motion),
         cmocka_unit_test(test_malformed_frames),
         cmocka_unit_test(test_watchdog),

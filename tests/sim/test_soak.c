@@ -22,12 +22,10 @@
  * frame's; one sent outside any frame is an error.
  *
  * The host numbers its poses as tsectl does, one past the last accepted commit, and corruption
- * never leaves a pose part under another number than its own: a part staged under a number ahead
- * of the host's makes every later part of the host's stale, for good (a part never displaces a
- * newer one, and the host's numbers cannot pass it while staying newer than the last commit; see
- * docs/reliability.md).  So random bytes never make a pose part for this node either, and stale
- * parts are older than the last commit.  Other commands take numbers from a counter of their
- * own.
+ * and random bytes may leave pose parts under any number: since a part of another number starts
+ * the staging afresh, a stray part ahead of the host's numbers costs at most one incomplete
+ * commit (it locked the host out for good before; docs/reliability.md), which the final move
+ * checks.  Other commands take numbers from a counter of their own.
  *
  * The plant is a fixed machine built from the default parameters, so the host never changes a
  * physical parameter, corruption spares PARAM_SET frames (a corrupted but valid write would set
@@ -265,20 +263,11 @@ static void after_poll(void *arg)
     judge();
 }
 
-static bool pose_part(const hal_can_frame *f)
-{
-    const uint8_t fn = (uint8_t)(f->id >> PROTO_NODE_BITS);
-    return fn >= FN(PM_POSE_A) && fn <= FN(PM_POSE_C);
-}
-
-/* Corruptions the soak does not make (see the top): any that touches a parameter write, and any
- * that leaves a pose part under a sequence number other than the one its frame had. */
+/* Corruptions the soak does not make (see the top): any that touches a parameter write. */
 static bool spare(void *arg, const hal_can_frame *before, const hal_can_frame *after)
 {
     (void)arg;
-    if ((before->id >> PROTO_NODE_BITS) == FN(PM_PARAM_SET) || (after->id >> PROTO_NODE_BITS) == FN(PM_PARAM_SET))
-        return true;
-    return pose_part(after) && !(pose_part(before) && before->data[0] == after->data[0]);
+    return (before->id >> PROTO_NODE_BITS) == FN(PM_PARAM_SET) || (after->id >> PROTO_NODE_BITS) == FN(PM_PARAM_SET);
 }
 
 /* ---- the host ---- */
@@ -492,15 +481,13 @@ static void invalid(void)
         frame(K_HOST_BOUND, proto_id(m, NODE), proto_table[m].dlc, d);
         break;
     }
-    default: { /* random bytes, except a parameter write or a pose part to this node (see the top) */
+    default: { /* random bytes, except a parameter write (see the top) */
         uint16_t id;
         uint8_t len;
-        hal_can_frame g;
         do {
             id = (uint16_t)below(0x800);
             len = (uint8_t)below(9);
-            g.id = id;
-        } while ((id >> PROTO_NODE_BITS) == FN(PM_PARAM_SET) || (pose_part(&g) && (id & PROTO_NODE_MASK) == NODE));
+        } while ((id >> PROTO_NODE_BITS) == FN(PM_PARAM_SET));
         frame(K_GARBAGE, id, len, d);
         break;
     }

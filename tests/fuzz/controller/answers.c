@@ -128,14 +128,13 @@ static void judge_commit(oracle_model *o, const rig *r, const oracle_outputs *ou
 static void judge_pose(oracle_model *o, const oracle_outputs *out)
 {
     const uint8_t seq = (uint8_t)o->wf.v[0];
-    /* A part of an older number never displaces a newer one. */
-    const bool older = o->stage_have != 0 && seq != o->stage_seq && !newer(seq, o->stage_seq);
+    /* Refused only when not newer than the last commit; a part of another number than the staged
+     * one starts the staging afresh (docs/protocol.md). */
     const bool spent = o->any_commit && !newer(seq, o->last_commit);
     FUZZ_CHECK(out->n_ack == 0 && out->n_pv == 0 && out->n_rej <= 1);
-    if (older)
-        FUZZ_CHECK(out->n_rej == 1);
+    FUZZ_CHECK(out->n_rej == (spent ? 1 : 0));
     if (out->n_rej) {
-        FUZZ_CHECK(out->rej[2] == FW_REASON_STALE && (older || spent));
+        FUZZ_CHECK(out->rej[2] == FW_REASON_STALE);
         return;
     }
     if (o->stage_have != 0 && seq != o->stage_seq)
