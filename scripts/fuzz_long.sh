@@ -30,7 +30,7 @@ for t in "${targets[@]}"; do
 done
 
 cmake --preset fuzz >/dev/null
-cmake --build --preset fuzz -j "$jobs"
+cmake --build build/fuzz -j "$jobs" --target "${targets[@]/#/fuzz_}"
 echo "fuzz_long.sh: ${#targets[@]} targets for $seconds s each, $jobs at a time"
 failed=0
 run_one() {

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# Sets up the machine, then builds and runs every test: the host build, the sanitizer build, and
-# the board build (whose float kinematics must not pull in software double arithmetic, whose
-# image must fit its flash and RAM budgets) with its on-target tests on QEMU's netduinoplus2.
+# Sets up the machine, then builds and runs every test: the host build, the sanitizer build, the
+# fuzz targets for a bounded time each (TSE_FUZZ_SECONDS, default 60; scripts/fuzz_long.sh runs
+# them for hours), the static analysis (scripts/static.sh), and the board build (whose float
+# kinematics must not pull in software double arithmetic, whose image must fit its flash and RAM
+# budgets) with its on-target tests on QEMU's netduinoplus2.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -14,6 +16,15 @@ for preset in host asan; do
   cmake --build --preset "$preset" -j "$jobs"
   ctest --preset "$preset" -j "$jobs"
 done
+
+fuzz_seconds=${TSE_FUZZ_SECONDS:-60}
+echo "=== fuzz: each target for ${fuzz_seconds} s from its seed corpus"
+cmake --preset fuzz -DTSE_FUZZ_SECONDS="$fuzz_seconds" >/dev/null
+cmake --build --preset fuzz -j "$jobs"
+ctest --preset fuzz -L fuzz -j "$jobs"
+
+echo "=== static analysis"
+bash scripts/static.sh
 
 echo "=== stm32f4: cross build, on-target tests"
 cmake --preset stm32f4 >/dev/null
