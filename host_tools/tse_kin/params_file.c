@@ -222,11 +222,11 @@ kin_params_outcome kin_params_parse(const char *text, const char *name, kin_para
         ++lineno;
         const char *nl = strchr(cur, '\n');
         const size_t len = nl ? (size_t)(nl - cur) : strlen(cur);
-        if (len >= KIN_PARAMS_MAX_LINE) {
-            snprintf(err, errlen, "%s:%d: line longer than %d characters", name, lineno, KIN_PARAMS_MAX_LINE - 1);
+        if (len > KIN_PARAMS_MAX_LINE) {
+            snprintf(err, errlen, "%s:%d: line longer than %d characters", name, lineno, KIN_PARAMS_MAX_LINE);
             return KIN_PARAMS_BAD;
         }
-        char buf[KIN_PARAMS_MAX_LINE];
+        char buf[KIN_PARAMS_MAX_LINE + 1];
         memcpy(buf, cur, len);
         buf[len] = '\0';
         cur = nl ? nl + 1 : cur + len;
