@@ -30,6 +30,12 @@ tse_status tse_fk(const tse_geometry *g, const tse_real q[6], const tse_real see
     for (int k = 0; k < 6; ++k)
         if (!(q[k] >= g->p.s_min && q[k] <= g->p.s_max))
             return fail(out, TSE_STROKE, k / 2 + 1);
+    /* Far from zero an angle is coarse (a float step is 1.2e-4 rad at 2000 rad, 2.5e-5 m of
+     * ball-joint travel): Newton could not place the plate as finely as the slides need, and the
+     * check below would pass a pose up to its tolerance off.  Same orientation, fine angles. */
+    for (int k = TSE_ROLL; k <= TSE_YAW; ++k)
+        if (tse_fabs(out->pose[k]) > TSE_R(2.0) * TSE_PI)
+            out->pose[k] = tse_atan2(tse_sin(out->pose[k]), tse_cos(out->pose[k]));
 
     /* Same stopping rule as the per-scissor Newton: after a step this small the quadratic
      * error left is below what the precision resolves. */

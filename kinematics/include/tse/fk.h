@@ -21,7 +21,8 @@ typedef struct {
 
 #define tse_fk TSE_NS(tse_fk)
 
-/* seed_pose: the last pose, or NULL for the geometry's home pose. */
+/* seed_pose: the last pose, or NULL for the geometry's home pose.  A seed angle beyond a full turn
+ * is taken as the same angle in [-pi, pi], so that the pose found is as fine as the precision. */
 tse_status tse_fk(const tse_geometry *g, const tse_real q[6], const tse_real seed_pose[6],
                   tse_fk_result *out);
 
