@@ -11,31 +11,8 @@
 #include <string.h>
 
 #include "fuzz_target.h"
+#include "wire_ref.h"
 #include "fw/proto.h"
-
-static const unsigned width[] = {[PF_U8] = 1, [PF_I8] = 1, [PF_U16] = 2, [PF_I16] = 2,
-                                 [PF_U24] = 3, [PF_I24] = 3, [PF_U32] = 4, [PF_I32] = 4};
-
-/* The field's value from its bytes, as the wire format defines it. */
-static int64_t field_value(const uint8_t *data, const proto_field *fd)
-{
-    const unsigned n = width[fd->type];
-    uint64_t raw = 0;
-    for (unsigned k = 0; k < n; ++k)
-        raw |= (uint64_t)data[fd->offset + k] << (8u * k);
-    const int is_signed = fd->type == PF_I8 || fd->type == PF_I16 || fd->type == PF_I24 || fd->type == PF_I32;
-    if (is_signed && (raw >> (8u * n - 1u)) & 1u)
-        return (int64_t)raw - ((int64_t)1 << (8u * n));
-    return (int64_t)raw;
-}
-
-static const proto_def *entry(uint8_t function, proto_direction dir)
-{
-    for (int i = 0; i < PM_COUNT; ++i)
-        if (proto_table[i].function == function && proto_table[i].dir == dir)
-            return &proto_table[i];
-    return NULL;
-}
 
 static void decode_case(const uint8_t *p, size_t n)
 {
@@ -53,7 +30,7 @@ static void decode_case(const uint8_t *p, size_t n)
     const proto_message untouched = m;
     const proto_error e = proto_decode(&f, dir, &m);
 
-    const proto_def *d = f.id <= 0x7FF ? entry((uint8_t)(f.id >> 4), dir) : NULL;
+    const proto_def *d = f.id <= 0x7FF ? wire_ref_entry((uint8_t)(f.id >> 4), dir) : NULL;
     if (d == NULL) {
         FUZZ_CHECK(e.reason == FW_REASON_UNKNOWN);
     } else if (f.len != d->dlc) {
@@ -61,7 +38,7 @@ static void decode_case(const uint8_t *p, size_t n)
     } else {
         int bad = -1;
         for (int i = 0; i < d->nfields && bad < 0; ++i) {
-            const int64_t v = field_value(f.data, &d->fields[i]);
+            const int64_t v = wire_ref_field(f.data, &d->fields[i]);
             if (v < d->fields[i].min || v > d->fields[i].max)
                 bad = i;
         }
@@ -71,12 +48,12 @@ static void decode_case(const uint8_t *p, size_t n)
             FUZZ_CHECK(e.reason == FW_REASON_NONE);
             FUZZ_CHECK(m.msg == d->msg && m.node == (f.id & 0xF));
             for (int i = 0; i < d->nfields; ++i)
-                FUZZ_CHECK(m.v[i] == field_value(f.data, &d->fields[i]));
+                FUZZ_CHECK(m.v[i] == wire_ref_field(f.data, &d->fields[i]));
             hal_can_frame g;
             FUZZ_CHECK(proto_encode(&m, &g) == 0);
             FUZZ_CHECK(g.id == f.id && g.len == f.len);
             for (int i = 0; i < d->nfields; ++i)
-                FUZZ_CHECK(field_value(g.data, &d->fields[i]) == m.v[i]);
+                FUZZ_CHECK(wire_ref_field(g.data, &d->fields[i]) == m.v[i]);
             return;
         }
     }

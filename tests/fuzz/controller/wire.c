@@ -3,42 +3,19 @@
 #include <string.h>
 
 #include "fuzz_target.h"
-
-static const unsigned width[] = {[PF_U8] = 1, [PF_I8] = 1, [PF_U16] = 2, [PF_I16] = 2,
-                                 [PF_U24] = 3, [PF_I24] = 3, [PF_U32] = 4, [PF_I32] = 4};
-
-/* Little-endian, two's complement of the field's width (docs/protocol.md). */
-static int64_t field_value(const uint8_t *data, const proto_field *fd)
-{
-    const unsigned n = width[fd->type];
-    uint64_t raw = 0;
-    for (unsigned k = 0; k < n; ++k)
-        raw |= (uint64_t)data[fd->offset + k] << (8u * k);
-    const bool is_signed = fd->type == PF_I8 || fd->type == PF_I16 || fd->type == PF_I24 || fd->type == PF_I32;
-    if (is_signed && (raw >> (8u * n - 1u)) & 1u)
-        return (int64_t)raw - ((int64_t)1 << (8u * n));
-    return (int64_t)raw;
-}
-
-static const proto_def *entry(uint8_t function, proto_direction dir)
-{
-    for (int i = 0; i < PM_COUNT; ++i)
-        if (proto_table[i].function == function && proto_table[i].dir == dir)
-            return &proto_table[i];
-    return NULL;
-}
+#include "wire_ref.h"
 
 void wire_classify(const hal_can_frame *f, uint8_t node, wire_frame *out)
 {
     memset(out, 0, sizeof *out);
     const uint8_t to = (uint8_t)(f->id & PROTO_NODE_MASK);
     out->function = (uint8_t)(f->id >> PROTO_NODE_BITS);
-    const proto_def *cmd = entry(out->function, PROTO_TO_CONTROLLER);
+    const proto_def *cmd = wire_ref_entry(out->function, PROTO_TO_CONTROLLER);
     if (to != node && to != PROTO_BROADCAST) {
         out->kind = WIRE_OTHER_NODE;
         return;
     }
-    if (!cmd && entry(out->function, PROTO_TO_HOST)) {
+    if (!cmd && wire_ref_entry(out->function, PROTO_TO_HOST)) {
         out->kind = WIRE_OWN_TRAFFIC;
         return;
     }
@@ -48,7 +25,7 @@ void wire_classify(const hal_can_frame *f, uint8_t node, wire_frame *out)
         if (f->len == cmd->dlc) {
             for (int i = 0; i < cmd->nfields; ++i) {
                 const proto_field *fd = &cmd->fields[i];
-                out->v[i] = field_value(f->data, fd);
+                out->v[i] = wire_ref_field(f->data, fd);
                 if (out->v[i] < fd->min || out->v[i] > fd->max)
                     out->bad_fields |= (uint8_t)(1u << i);
             }
@@ -75,12 +52,12 @@ proto_msg wire_read_sent(const hal_can_frame *f, uint8_t node, int64_t v[PROTO_M
 {
     FUZZ_CHECK(f->id <= HAL_CAN_MAX_ID);
     FUZZ_CHECK((f->id & PROTO_NODE_MASK) == node);
-    const proto_def *d = entry((uint8_t)(f->id >> PROTO_NODE_BITS), PROTO_TO_HOST);
+    const proto_def *d = wire_ref_entry((uint8_t)(f->id >> PROTO_NODE_BITS), PROTO_TO_HOST);
     FUZZ_CHECK(d != NULL);
     FUZZ_CHECK(f->len == d->dlc);
     for (int i = 0; i < d->nfields; ++i) {
         const proto_field *fd = &d->fields[i];
-        v[i] = field_value(f->data, fd);
+        v[i] = wire_ref_field(f->data, fd);
         FUZZ_CHECK(v[i] >= fd->min && v[i] <= fd->max);
     }
     return d->msg;
