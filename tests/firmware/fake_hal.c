@@ -132,7 +132,7 @@ void fake_send(fake_hal *f, uint16_t id, uint8_t len, const uint8_t *data)
     ++f->rx_count;
 }
 
-void fake_send_msg(fake_hal *f, uint8_t node, proto_msg m, const int32_t *values)
+int fake_encode(uint8_t node, proto_msg m, const int32_t *values, hal_can_frame *fr)
 {
     proto_message pm;
     memset(&pm, 0, sizeof pm);
@@ -140,8 +140,13 @@ void fake_send_msg(fake_hal *f, uint8_t node, proto_msg m, const int32_t *values
     pm.node = node;
     for (int i = 0; i < proto_table[m].nfields; ++i)
         pm.v[i] = values[i];
+    return proto_encode(&pm, fr);
+}
+
+void fake_send_msg(fake_hal *f, uint8_t node, proto_msg m, const int32_t *values)
+{
     hal_can_frame fr;
-    if (proto_encode(&pm, &fr) == 0)
+    if (fake_encode(node, m, values, &fr) == 0)
         fake_send(f, fr.id, fr.len, fr.data);
 }
 

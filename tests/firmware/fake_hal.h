@@ -55,6 +55,10 @@ void fake_hal_init(fake_hal *f, fw_hal *hal);
 /* Queues a frame for the controller. */
 void fake_send(fake_hal *f, uint16_t id, uint8_t len, const uint8_t *data);
 
+/* Encodes a message to `node` from its field values in table order; 0, or -1 when a value is out
+ * of range (proto_encode). */
+int fake_encode(uint8_t node, proto_msg m, const int32_t *values, hal_can_frame *fr);
+
 /* Encodes a message to `node` and queues it for the controller (the values must be in range). */
 void fake_send_msg(fake_hal *f, uint8_t node, proto_msg m, const int32_t *values);
 

@@ -139,14 +139,8 @@ void rig_feed(rig *r, const hal_can_frame *fr)
 
 void rig_feed_msg(rig *r, uint8_t node, proto_msg m, const int32_t *values)
 {
-    proto_message pm;
-    memset(&pm, 0, sizeof pm);
-    pm.msg = m;
-    pm.node = node;
-    for (int i = 0; i < proto_table[m].nfields; ++i)
-        pm.v[i] = values[i];
     hal_can_frame fr;
-    if (proto_encode(&pm, &fr) == 0)
+    if (fake_encode(node, m, values, &fr) == 0)
         rig_feed(r, &fr);
 }
 
