@@ -16,6 +16,8 @@ packages=(
   qemu-system-x86 busybox-static cpio can-utils   # the vcan harness (a VM where the kernel has no CAN)
   clang libclang-rt-14-dev          # the fuzz preset (libFuzzer, AddressSanitizer, UBSan)
   cppcheck clang-tidy               # scripts/static.sh
+  valgrind                          # scripts/kin_icount.sh (instruction counts on the host)
+  libgsl-dev                        # bench/gsl_peer.c, the GSL Newton peer of the benchmark
 )
 
 missing=()
