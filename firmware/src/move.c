@@ -2,10 +2,20 @@
 
 #include "fw/quat.h"
 #include "fw/slide_check.h"
+#include "fw/validate.h"
 
 /* Planning keeps this fraction of every slide limit in hand for the step quantisation. */
 #define LIMIT_MARGIN TSE_R(0.95)
 #define MAX_STRETCH_ROUNDS 6
+
+void fw_move_pose_at(const fw_move *mv, tse_real u, tse_real pose[6])
+{
+    for (int k = 0; k < 3; ++k)
+        pose[k] = mv->from[k] + u * mv->dp[k];
+    tse_real q[4];
+    fw_quat_slerp(mv->q0, mv->q1, u, q);
+    fw_quat_to_rpy(q, &pose[3]);
+}
 
 void fw_move_pose(const fw_move *mv, tse_real t, tse_real pose[6])
 {
@@ -16,11 +26,7 @@ void fw_move_pose(const fw_move *mv, tse_real t, tse_real pose[6])
             pose[k] = mv->to[k]; /* the end is the commanded pose, bit for bit */
         return;
     }
-    for (int k = 0; k < 3; ++k)
-        pose[k] = mv->from[k] + u * mv->dp[k];
-    tse_real q[4];
-    fw_quat_slerp(mv->q0, mv->q1, u, q);
-    fw_quat_to_rpy(q, &pose[3]);
+    fw_move_pose_at(mv, u, pose);
 }
 
 tse_real fw_move_segment_time(const fw_move *mv, const fw_limits *lim, uint32_t k)
@@ -28,6 +34,19 @@ tse_real fw_move_segment_time(const fw_move *mv, const fw_limits *lim, uint32_t 
     if (k >= mv->segments)
         return mv->prof.T;
     return (tse_real)k / lim->segment_hz;
+}
+
+/* The slerp turns the plate about one world axis at a constant rate: the axis of q1 q0^-1 (q1 on
+ * q0's side), times the angle per unit of u. */
+static void move_omega(fw_move *mv)
+{
+    tse_real inv[4], rel[4];
+    fw_quat_conj(mv->q0, inv);
+    fw_quat_mul(mv->q1, inv, rel);
+    const tse_real sgn = rel[0] < TSE_R(0.0) ? TSE_R(-1.0) : TSE_R(1.0);
+    const tse_real n = tse_sqrt(rel[1] * rel[1] + rel[2] * rel[2] + rel[3] * rel[3]);
+    for (int k = 0; k < 3; ++k)
+        mv->omega[k] = n > TSE_R(0.0) ? sgn * rel[k + 1] * mv->angle / n : TSE_R(0.0);
 }
 
 static tse_real min_pos(tse_real a, tse_real b)
@@ -56,44 +75,16 @@ void fw_plan_timing(fw_plan_result *res, fw_slide_worst w, tse_real scale)
     res->ratio = w.ratio * scale;
 }
 
-/* Walks the path as execution will.  Returns 0 with the worst speed and acceleration ratios to
- * the slide limits and the worse of the two, or -1 with the first failing point in *res. */
-static int walk(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const tse_real q_from[6],
-                tse_real *v_ratio, tse_real *a_ratio, fw_slide_worst *worst, fw_plan_result *res)
-{
-    fw_slide_check chk;
-    fw_slide_check_start(&chk, lim->slide_vmax, lim->slide_amax, lim->segment_hz, q_from);
-    tse_real t_prev = TSE_R(0.0);
-    for (uint32_t s = 1; s <= mv->segments; ++s) {
-        const tse_real t = fw_move_segment_time(mv, lim, s);
-        tse_real pose[6];
-        fw_move_pose(mv, t, pose);
-        tse_ik_result r;
-        if (tse_ik(g, pose, chk.q, &r) != TSE_OK) {
-            tse_real u, du, ddu;
-            fw_profile_eval(&mv->prof, t, &u, &du, &ddu);
-            res->reason = FW_REASON_KINEMATICS;
-            res->status = r.status;
-            res->scissor = r.scissor;
-            res->segment = s;
-            res->where = u;
-            return -1;
-        }
-        fw_slide_check_feed(&chk, r.q, t - t_prev);
-        t_prev = t;
-    }
-    fw_slide_check_finish(&chk);
-    *v_ratio = chk.v_ratio;
-    *a_ratio = chk.a_ratio;
-    *worst = fw_slide_check_worst(&chk);
-    for (int k = 0; k < 6; ++k)
-        mv->q_end[k] = chk.q[k];
-    return 0;
-}
-
 int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const tse_real from[6],
                  const tse_real to[6], fw_move_kind kind, tse_real value, const tse_real q_from[6],
                  fw_plan_result *res)
+{
+    return fw_move_plan_by(mv, g, lim, from, to, kind, value, q_from, res, fw_validate);
+}
+
+int fw_move_plan_by(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const tse_real from[6],
+                    const tse_real to[6], fw_move_kind kind, tse_real value, const tse_real q_from[6],
+                    fw_plan_result *res, fw_validator validate)
 {
     fw_plan_clear(res);
     for (int k = 0; k < 6; ++k) {
@@ -118,6 +109,7 @@ int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const
     fw_quat_from_rpy(from[3], from[4], from[5], mv->q0);
     fw_quat_from_rpy(to[3], to[4], to[5], mv->q1);
     mv->angle = fw_quat_angle(mv->q0, mv->q1);
+    move_omega(mv);
     mv->stretch = TSE_R(1.0);
 
     /* Limits on u: whichever of translation and rotation binds.  The angular jerk limit keeps
@@ -152,9 +144,13 @@ int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const
     for (int round = 0; round < MAX_STRETCH_ROUNDS; ++round) {
         const tse_real segs = tse_ceil(mv->prof.T * lim->segment_hz);
         mv->segments = segs < TSE_R(1.0) ? 1u : (uint32_t)segs;
-        tse_real vr, ar;
-        if (walk(mv, g, &margin, q_from, &vr, &ar, &worst, res) != 0)
+        fw_validation val;
+        if (validate(mv, g, &margin, q_from, &val, res) != 0)
             return -1;
+        for (int k = 0; k < 6; ++k)
+            mv->q_end[k] = val.q_end[k];
+        const tse_real vr = val.v_ratio, ar = val.a_ratio;
+        worst = val.worst;
         /* Speeds scale with 1/k and accelerations with 1/k^2 under a time stretch by k. */
         tse_real k = vr;
         const tse_real ka = tse_sqrt(ar);

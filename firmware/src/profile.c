@@ -112,3 +112,35 @@ void fw_profile_eval(const fw_profile *p, tse_real t, tse_real *x, tse_real *v, 
         *a = -*a;
     }
 }
+
+void fw_profile_range(const fw_profile *p, tse_real t0, tse_real t1, tse_real v[2], tse_real a[2])
+{
+    if (t0 < TSE_R(0.0))
+        t0 = TSE_R(0.0);
+    if (t1 > p->T)
+        t1 = p->T;
+    if (t1 < t0)
+        t1 = t0;
+    const tse_real at[6] = {t0, t1, TSE_R(0.5) * p->Ta, p->Ta, p->Ta + p->Tc, p->T - TSE_R(0.5) * p->Ta};
+    for (int i = 0; i < 6; ++i) {
+        if (i >= 2 && !(at[i] > t0 && at[i] < t1))
+            continue;
+        tse_real x, vi, ai;
+        fw_profile_eval(p, at[i], &x, &vi, &ai);
+        if (i == 0 || vi < v[0])
+            v[0] = vi;
+        if (i == 0 || vi > v[1])
+            v[1] = vi;
+        if (i == 0 || ai < a[0])
+            a[0] = ai;
+        if (i == 0 || ai > a[1])
+            a[1] = ai;
+    }
+    /* The formulas' rounding: a few units in the last place of the profile's own scales. */
+    const tse_real dv = TSE_R(16.0) * TSE_REAL_EPS * p->V;
+    const tse_real da = p->Ta > TSE_R(0.0) ? TSE_R(16.0) * TSE_REAL_EPS * p->V / p->Ta : TSE_R(0.0);
+    v[0] -= dv;
+    v[1] += dv;
+    a[0] -= da;
+    a[1] += da;
+}

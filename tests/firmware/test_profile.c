@@ -68,6 +68,63 @@ static void test_random_profiles(void **state)
     }
 }
 
+/* Speed and acceleration by the header's formulas, independently of profile.c: cycloidal ramps
+ * a = (V/Ta)(1 - cos(2 pi t/Ta)), v = (V/Ta)(t - (Ta/2pi) sin(2 pi t/Ta)), mirrored at the end. */
+static void by_hand(const fw_profile *p, double t, double *v, double *a)
+{
+    const double w = 2.0 * TSE_PI / p->Ta;
+    double tr = t, sign = 1.0;
+    if (t <= 0.0 || t >= p->T) {
+        *v = *a = 0.0;
+        return;
+    }
+    if (t > p->Ta && t < p->Ta + p->Tc) {
+        *v = p->V;
+        *a = 0.0;
+        return;
+    }
+    if (t >= p->Ta + p->Tc) {
+        tr = p->T - t;
+        sign = -1.0;
+    }
+    *v = p->V / p->Ta * (tr - sin(w * tr) / w);
+    *a = sign * p->V / p->Ta * (1.0 - cos(w * tr));
+}
+
+/* fw_profile_range holds every speed and acceleration of the span, and is no wider than the
+ * values met there (sampled densely; the sampling's own gap bounded by the jerk). */
+static void test_range(void **state)
+{
+    (void)state;
+    srand(5);
+    for (int rep = 0; rep < 400; ++rep) {
+        fw_profile p;
+        assert_int_equal(fw_profile_plan(&p, U(1e-3, 1.0), U(0.05, 1.0), U(0.1, 5.0), U(1.0, 100.0),
+                                         rep % 2 ? U(0.0, 4.0) : 0.0), 0);
+        const double t0 = U(-0.1, 1.1) * p.T, t1 = t0 + U(0.0, 0.6) * p.T;
+        double v[2], a[2];
+        fw_profile_range(&p, t0, t1, v, a);
+        double vlo = 1e300, vhi = -1e300, alo = 1e300, ahi = -1e300;
+        enum { N = 4000 };
+        const double lo = fmax(t0, 0.0), hi = fmin(t1, p.T);
+        for (int i = 0; i <= N && hi >= lo; ++i) {
+            double vi, ai;
+            by_hand(&p, lo + (hi - lo) * i / N, &vi, &ai);
+            assert_true(vi >= v[0] - 1e-12 && vi <= v[1] + 1e-12);
+            assert_true(ai >= a[0] - 1e-12 && ai <= a[1] + 1e-12);
+            vlo = fmin(vlo, vi);
+            vhi = fmax(vhi, vi);
+            alo = fmin(alo, ai);
+            ahi = fmax(ahi, ai);
+        }
+        if (!(hi >= lo))
+            continue;
+        const double jerk = 2.0 * TSE_PI * p.V / (p.Ta * p.Ta), gap = (hi - lo) / N;
+        assert_true(v[0] >= vlo - 2.0 * p.V / p.Ta * gap - 1e-9 && v[1] <= vhi + 2.0 * p.V / p.Ta * gap + 1e-9);
+        assert_true(a[0] >= alo - jerk * gap - 1e-9 && a[1] <= ahi + jerk * gap + 1e-9);
+    }
+}
+
 static void test_invalid(void **state)
 {
     (void)state;
@@ -88,6 +145,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_random_profiles),
+        cmocka_unit_test(test_range),
         cmocka_unit_test(test_invalid),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -86,7 +86,7 @@ static void test_limit_mid_move(void **state)
     rig_move(&R, OTHER, 3000);
     rig_run(&R, 600);
     assert_int_equal(R.fw.state, FW_STATE_MOVING);
-    R.inputs.cfg.limit = (fault_window){now(), now() + 300000};
+    R.inputs.cfg.limit = (fault_window){now(), now() + 600000};
     R.inputs.cfg.limit_mask = 1u << (8 + 2); /* slide 3's high end */
     rig_run(&R, 1);
     assert_int_equal(R.fw.state, FW_STATE_STOPPING);

@@ -26,6 +26,7 @@
 #include <string.h>
 
 #include "fw/move.h"
+#include "fw/validate.h"
 #include "kin_table.h"
 #include "target_test.h"
 #include "tse/ik.h"
@@ -295,6 +296,79 @@ static void bad_requests(void)
     TT_CHECK(res.reason == FW_REASON_RANGE);
 }
 
+/* The piecewise proof (fw/validate.h) against the per-segment walk in the board's float, on moves
+ * from the start pose to just inside or just outside the workspace boundary along random
+ * directions (found by bisection with the float IK): the same verdict, a refusal at the same
+ * segment, status and scissor; our accepted plan, walked segment by segment, within the limits
+ * aimed at (95 %) up to the float rounding the walk reads. */
+static uint32_t lcg = 12345u;
+
+static float unit(void)
+{
+    lcg = lcg * 1664525u + 1013904223u;
+    return (float)(lcg >> 8) * (1.0f / 16777216.0f);
+}
+
+static void proof_matches_walk(void)
+{
+    setup();
+    tse_real from[6], q0[6];
+    ref_pose(REF_START, from);
+    TT_CHECK(start_slides(from, q0));
+    static fw_move fast, walk;
+    int refused = 0, accepted = 0;
+    unsigned pieces = 0, solves = 0, segments = 0;
+    for (int n = 0; n < 24; ++n) {
+        tse_real dir[6], to[6];
+        for (int k = 0; k < 6; ++k)
+            dir[k] = (unit() - 0.5f) * (k < 2 ? 0.5f : k == 2 ? 1.2f : 0.6f);
+        float lo = 0.0f, hi = 1.0f;
+        for (int it = 0; it < 24; ++it) {
+            const float mid = 0.5f * (lo + hi);
+            for (int k = 0; k < 6; ++k)
+                to[k] = from[k] + mid * dir[k];
+            tse_ik_result r;
+            if (tse_ik(&geom, to, NULL, &r) == TSE_OK)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        const float t = lo * (1.0f + (unit() - 0.3f) * 0.04f);
+        for (int k = 0; k < 6; ++k)
+            to[k] = from[k] + t * dir[k];
+        const float dur = n % 3 == 0 ? 0.3f : 2.0f;
+        fw_plan_result rf, rw;
+        const int a = fw_move_plan_by(&fast, &geom, &board_lim, from, to, FW_MOVE_DURATION, dur, q0, &rf, fw_validate);
+        const int b = fw_move_plan_by(&walk, &geom, &board_lim, from, to, FW_MOVE_DURATION, dur, q0, &rw,
+                                      fw_validate_per_segment);
+        TT_CHECK(a == b);
+        if (b != 0) {
+            ++refused;
+            TT_CHECK(rf.reason == rw.reason && rf.segment == rw.segment && rf.status == rw.status &&
+                     rf.scissor == rw.scissor);
+            continue;
+        }
+        ++accepted;
+        TT_CHECK(fast.stretch <= walk.stretch * 1.06f);
+        fw_validation vf;
+        TT_CHECK(fw_validate(&fast, &geom, &board_lim, q0, &vf, &rw) == 0);
+        pieces += vf.pieces;
+        solves += vf.solves;
+        segments += fast.segments;
+        fw_limits aim = board_lim;
+        aim.slide_vmax *= 0.95f;
+        aim.slide_amax *= 0.95f;
+        fw_validation vw;
+        fw_plan_result rr;
+        TT_CHECK(fw_validate_per_segment(&fast, &geom, &aim, q0, &vw, &rr) == 0);
+        /* float rounding read over 10 ms: 4e-7 m / (10 ms)^2 = 0.004 m/s^2, 0.4 % of the limit */
+        TT_CHECK(vw.v_ratio <= 1.0f + 1e-3f && vw.a_ratio <= 1.0f + 1e-2f);
+    }
+    sh_printf("  %d moves refused, %d accepted: %u segments validated with %u solves in %u pieces\n", refused,
+              accepted, segments, solves, pieces);
+    TT_CHECK(refused >= 3 && accepted >= 3);
+}
+
 int main(void)
 {
     tt_begin("planner");
@@ -302,5 +376,6 @@ int main(void)
     tt_case("a move too fast for the slides is stretched", too_fast_is_stretched);
     tt_case("a path through a failing region is rejected at its first failing point", unreachable_path_rejected);
     tt_case("malformed requests", bad_requests);
+    tt_case("the piecewise proof gives the per-segment walk's verdict", proof_matches_walk);
     tt_finish();
 }

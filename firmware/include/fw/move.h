@@ -35,6 +35,7 @@ typedef struct {
     tse_real q0[4], q1[4];
     tse_real length;    /* |dp| [m] */
     tse_real angle;     /* rotation [rad] */
+    tse_real omega[3];  /* the plate's world angular velocity per unit of u [rad]: constant */
     fw_profile prof;    /* of u, D = 1 */
     uint32_t segments;  /* control segments; the last one ends exactly at prof.T */
     tse_real stretch;   /* time factor the slide limits imposed (1: none) */
@@ -70,6 +71,9 @@ int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const
 
 /* Pose at time t (clamped to the move). */
 void fw_move_pose(const fw_move *mv, tse_real t, tse_real pose[6]);
+
+/* Pose at path parameter u in [0, 1]: the straight line and the slerp. */
+void fw_move_pose_at(const fw_move *mv, tse_real u, tse_real pose[6]);
 
 /* Time of control segment k's end: k / rate, the last one exactly at the end. */
 tse_real fw_move_segment_time(const fw_move *mv, const fw_limits *lim, uint32_t k);

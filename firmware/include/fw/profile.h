@@ -26,6 +26,11 @@ int fw_profile_plan(fw_profile *p, tse_real D, tse_real v_max, tse_real a_max, t
 /* Slows the whole profile down by k >= 1: speeds / k, accelerations / k^2, jerks / k^3. */
 void fw_profile_stretch(fw_profile *p, tse_real k);
 
+/* The range of the speed and of the acceleration over [t0, t1] (clamped to [0, T]): both are
+ * monotone between the profile's breakpoints (Ta/2, Ta, Ta + Tc, T - Ta/2), so their extremes are
+ * at the ends or at a breakpoint inside.  Widened by the formulas' rounding. */
+void fw_profile_range(const fw_profile *p, tse_real t0, tse_real t1, tse_real v[2], tse_real a[2]);
+
 /* Position, speed and acceleration at time t (clamped to [0, T]). */
 void fw_profile_eval(const fw_profile *p, tse_real t, tse_real *x, tse_real *v, tse_real *a);
 

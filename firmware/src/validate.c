@@ -1,0 +1,313 @@
+#include "fw/validate.h"
+
+#include "tse/enclose.h"
+
+static void copy6(tse_real dst[6], const tse_real src[6])
+{
+    for (int k = 0; k < 6; ++k)
+        dst[k] = src[k];
+}
+
+static void refuse(const fw_move *mv, tse_real t, uint32_t segment, const tse_ik_result *r, fw_plan_result *res)
+{
+    tse_real u, du, ddu;
+    fw_profile_eval(&mv->prof, t, &u, &du, &ddu);
+    res->reason = FW_REASON_KINEMATICS;
+    res->status = r->status;
+    res->scissor = r->scissor;
+    res->segment = segment;
+    res->where = u;
+}
+
+int fw_validate_per_segment(const fw_move *mv, const tse_geometry *g, const fw_limits *lim,
+                            const tse_real q_from[6], fw_validation *v, fw_plan_result *res)
+{
+    fw_slide_check chk;
+    fw_slide_check_start(&chk, lim->slide_vmax, lim->slide_amax, lim->segment_hz, q_from);
+    v->pieces = 0;
+    v->solves = 0;
+    v->per_segment = true;
+    tse_real t_prev = TSE_R(0.0);
+    for (uint32_t s = 1; s <= mv->segments; ++s) {
+        const tse_real t = fw_move_segment_time(mv, lim, s);
+        tse_real pose[6];
+        fw_move_pose(mv, t, pose);
+        tse_ik_result r;
+        ++v->solves;
+        if (tse_ik(g, pose, chk.q, &r) != TSE_OK) {
+            refuse(mv, t, s, &r, res);
+            return -1;
+        }
+        fw_slide_check_feed(&chk, r.q, t - t_prev);
+        t_prev = t;
+    }
+    fw_slide_check_finish(&chk);
+    v->v_ratio = chk.v_ratio;
+    v->a_ratio = chk.a_ratio;
+    v->worst = fw_slide_check_worst(&chk);
+    copy6(v->q_end, chk.q);
+    return 0;
+}
+
+/* Whether every slide of q lies in the enclosure's box. */
+static bool in_box(const tse_enclosure *e, const tse_real q[6])
+{
+    for (int k = 0; k < 6; ++k)
+        if (!(q[k] >= e->q_lo[k] && q[k] <= e->q_hi[k]))
+            return false;
+    return true;
+}
+
+/* Relative slack allowed between a piece's timing bound and the largest speed or acceleration
+ * actually met so far, before the piece is halved to tighten it. */
+#define TIMING_SLACK TSE_R(0.02)
+
+typedef struct {
+    tse_real v[6], a[6];   /* each slide's worst bounds, as ratios to the limits */
+    tse_real met_v, met_a; /* the largest ratios met at a piece's centre (lower bounds) */
+} timing;
+
+typedef struct {
+    tse_real v[6], a[6];   /* the piece's bounds, as ratios */
+    tse_real v_max, a_max; /* the largest of each */
+} piece_timing;
+
+/* Product of two intervals [lo, hi]. */
+static void imul(const tse_real x[2], const tse_real y[2], tse_real out[2])
+{
+    const tse_real p[4] = {x[0] * y[0], x[0] * y[1], x[1] * y[0], x[1] * y[1]};
+    out[0] = out[1] = p[0];
+    for (int i = 1; i < 4; ++i) {
+        if (p[i] < out[0])
+            out[0] = p[i];
+        if (p[i] > out[1])
+            out[1] = p[i];
+    }
+}
+
+/* The slides' speed and acceleration over a piece, in interval arithmetic from the enclosure's
+ * derivatives along u (midpoint and radius) and the profile's speed and acceleration ranges over
+ * the piece's time span: dq/dt = q' du/dt, d2q/dt2 = q'' (du/dt)^2 + q' d2u/dt2, whose two terms
+ * often cancel (a slide whose q' grows as the path slows down), which signed ranges keep.  Also the
+ * values at the centre time, which the path does reach. */
+static piece_timing piece_bounds(timing *tm, const tse_enclosure *e, const fw_move *mv, const fw_limits *lim,
+                                 tse_real t0, tse_real t1, tse_real ud_c, tse_real udd_c)
+{
+    tse_real ud[2], udd[2];
+    fw_profile_range(&mv->prof, t0, t1, ud, udd);
+    const tse_real ud_hi = tse_fabs(ud[0]) > tse_fabs(ud[1]) ? tse_fabs(ud[0]) : tse_fabs(ud[1]);
+    const tse_real ud_lo = ud[0] > TSE_R(0.0) ? ud[0] : TSE_R(0.0);
+    const tse_real ud2[2] = {ud_lo * ud_lo, ud_hi * ud_hi};
+    piece_timing pt;
+    pt.v_max = TSE_R(0.0);
+    pt.a_max = TSE_R(0.0);
+    for (int k = 0; k < 6; ++k) {
+        const tse_real r1 = e->dq[k] - tse_fabs(e->dq_c[k]), r2 = e->ddq[k] - tse_fabs(e->ddq_c[k]);
+        const tse_real q1[2] = {e->dq_c[k] - r1, e->dq_c[k] + r1};
+        const tse_real q2[2] = {e->ddq_c[k] - r2, e->ddq_c[k] + r2};
+        tse_real t2[2], t1r[2];
+        imul(q2, ud2, t2);
+        imul(q1, udd, t1r);
+        const tse_real lo = t2[0] + t1r[0], hi = t2[1] + t1r[1];
+        pt.v[k] = e->dq[k] * ud_hi / lim->slide_vmax;
+        pt.a[k] = (tse_fabs(lo) > tse_fabs(hi) ? tse_fabs(lo) : tse_fabs(hi)) / lim->slide_amax;
+        if (pt.v[k] > pt.v_max)
+            pt.v_max = pt.v[k];
+        if (pt.a[k] > pt.a_max)
+            pt.a_max = pt.a[k];
+        const tse_real mv_k = tse_fabs(e->dq_c[k] * ud_c) / lim->slide_vmax;
+        const tse_real ma_k = tse_fabs(e->ddq_c[k] * ud_c * ud_c + e->dq_c[k] * udd_c) / lim->slide_amax;
+        if (mv_k > tm->met_v)
+            tm->met_v = mv_k;
+        if (ma_k > tm->met_a)
+            tm->met_a = ma_k;
+    }
+    return pt;
+}
+
+/* A piece whose bound is over the limit but well above what the path is seen to need would
+ * stretch the move for the bound's slack alone: it is halved until its bound is close. */
+static bool too_loose(const timing *tm, const piece_timing *pt)
+{
+    return (pt->v_max > TSE_R(1.0) && pt->v_max > tm->met_v * (TSE_R(1.0) + TIMING_SLACK)) ||
+           (pt->a_max > TSE_R(1.0) && pt->a_max > tm->met_a * (TSE_R(1.0) + TIMING_SLACK));
+}
+
+static void account(timing *tm, const piece_timing *pt)
+{
+    for (int k = 0; k < 6; ++k) {
+        if (pt->v[k] > tm->v[k])
+            tm->v[k] = pt->v[k];
+        if (pt->a[k] > tm->a[k])
+            tm->a[k] = pt->a[k];
+    }
+}
+
+/* The box of a piece, all that the next piece needs of it. */
+typedef struct {
+    tse_real lo[6], hi[6];
+} box6;
+
+static void keep_box(box6 *b, const tse_enclosure *e)
+{
+    copy6(b->lo, e->q_lo);
+    copy6(b->hi, e->q_hi);
+}
+
+/* Whether two boxes overlap in every slide: the same branch passes from one piece to the next.
+ * Two solutions of one scissor for one ball joint lie a scissor's size apart, boxes micrometres
+ * to millimetres wide: overlapping boxes hold the same one. */
+static bool boxes_meet(const box6 *a, const tse_enclosure *b)
+{
+    for (int k = 0; k < 6; ++k)
+        if (!(a->lo[k] <= b->q_hi[k] && b->q_lo[k] <= a->hi[k]))
+            return false;
+    return true;
+}
+
+/* Returns 0 (valid), -1 (refused, *res filled) or 1 (not proven: the per-segment walk decides).
+ * Kept out of line so that the stack holds either this walk or the per-segment one, not both. */
+static __attribute__((noinline)) int prove(const fw_move *mv, const tse_geometry *g, const fw_limits *lim,
+                                           const tse_real q_from[6], fw_validation *v, fw_plan_result *res)
+{
+    const uint32_t n = mv->segments;
+    /* The poses' rounding, for the ball joints: a few units in the last place of the position and
+     * the plate; and where the slerp falls back to a normalised lerp (half-angle below 1e-4), its
+     * departure from a constant rate, of order angle^3. */
+    tse_real extent = g->r_top;
+    for (int k = 0; k < 3; ++k)
+        extent += tse_fabs(mv->from[k]) + tse_fabs(mv->dp[k]);
+    tse_real pad = TSE_R(64.0) * TSE_REAL_EPS * extent;
+    if (mv->angle < TSE_R(2e-4))
+        pad += g->r_top * mv->angle * mv->angle * mv->angle;
+    const tse_real u_pad = TSE_R(4.0) * TSE_REAL_EPS;
+    tse_piece piece;
+    for (int k = 0; k < 3; ++k) {
+        piece.lin[k] = mv->dp[k];
+        piece.omega[k] = mv->omega[k];
+    }
+    piece.pad = pad;
+
+    /* The slides the move starts from may differ from the start pose's solution (by the solver's
+     * rounding, or more): the per-segment walk sees that gap in its first setpoints, so it is
+     * measured here as that walk measures it.  The first segment's speed is its setpoint's
+     * distance from q_from; and setpoints before the start hold q_from, not the branch's start,
+     * which moves every second difference over the first strides by at most the gap. */
+    tse_real pose[6], q_start[6], q_first[6], seed[6];
+    tse_ik_result r;
+    v->solves = 2;
+    v->pieces = 0;
+    fw_move_pose(mv, TSE_R(0.0), pose);
+    if (tse_ik(g, pose, q_from, &r) != TSE_OK)
+        return 1;
+    copy6(q_start, r.q);
+    const tse_real t_first = fw_move_segment_time(mv, lim, 1u);
+    fw_move_pose(mv, t_first, pose);
+    if (tse_ik(g, pose, q_from, &r) != TSE_OK)
+        return 1;
+    copy6(q_first, r.q);
+    copy6(seed, q_start);
+
+    /* Pieces from the start to the end, each as long as can be proven: halved on a failure,
+     * doubled after a success. */
+    timing tm;
+    for (int k = 0; k < 6; ++k)
+        tm.v[k] = tm.a[k] = TSE_R(0.0);
+    tm.met_v = tm.met_a = TSE_R(0.0);
+    box6 prev;
+    bool have_prev = false;
+    uint32_t s0 = 0, len = n;
+    while (s0 < n) {
+        const uint32_t s1 = n - s0 > len ? s0 + len : n;
+        const tse_real t0 = fw_move_segment_time(mv, lim, s0), t1 = fw_move_segment_time(mv, lim, s1);
+        const tse_real tc = TSE_R(0.5) * (t0 + t1);
+        tse_real u0, u1, uc, ud_c, udd_c, du, ddu;
+        fw_profile_eval(&mv->prof, t0, &u0, &du, &ddu);
+        fw_profile_eval(&mv->prof, t1, &u1, &du, &ddu);
+        fw_profile_eval(&mv->prof, tc, &uc, &ud_c, &udd_c);
+        piece.half = (uc - u0 > u1 - uc ? uc - u0 : u1 - uc) + u_pad;
+        fw_move_pose_at(mv, uc, pose);
+        tse_enclosure e;
+        ++v->pieces;
+        ++v->solves;
+        const bool solved = tse_ik(g, pose, seed, &r) == TSE_OK;
+        bool proven = solved && tse_ik_enclose(g, &piece, pose, &r, &e);
+        piece_timing pt;
+        if (proven) {
+            pt = piece_bounds(&tm, &e, mv, lim, t0, t1, ud_c, udd_c);
+            if (too_loose(&tm, &pt))
+                proven = false;
+        }
+        if (!proven && s1 - s0 > 1) {
+            len = (s1 - s0) / 2;
+            continue;
+        }
+        copy6(seed, r.q);
+        if (!proven) {
+            /* One segment that cannot be proven as a whole: its end is checked as the
+             * per-segment walk checks it, its speeds bounded from the enclosure alone. */
+            if (!solved || !e.enclosed)
+                return 1;
+            fw_move_pose(mv, t1, pose);
+            ++v->solves;
+            if (tse_ik(g, pose, seed, &r) != TSE_OK) {
+                refuse(mv, t1, s1, &r, res);
+                return -1;
+            }
+            if (!in_box(&e, r.q))
+                return 1;
+            pt = piece_bounds(&tm, &e, mv, lim, t0, t1, ud_c, udd_c);
+        }
+        /* The chain of boxes follows one branch from the start pose's solution. */
+        if (have_prev ? !boxes_meet(&prev, &e) : !(in_box(&e, q_start) && in_box(&e, q_first)))
+            return 1;
+        account(&tm, &pt);
+        keep_box(&prev, &e);
+        have_prev = true;
+        s0 = s1;
+        len = len > n / 2 ? n : 2 * len;
+    }
+    /* The end pose, as execution's last setpoint: the commanded pose itself. */
+    fw_move_pose(mv, mv->prof.T, pose);
+    ++v->solves;
+    if (tse_ik(g, pose, seed, &r) != TSE_OK || !have_prev)
+        return 1;
+    for (int k = 0; k < 6; ++k)
+        if (!(r.q[k] >= prev.lo[k] && r.q[k] <= prev.hi[k]))
+            return 1;
+    copy6(v->q_end, r.q);
+    const tse_real span = (tse_real)FW_ACC_STRIDE / lim->segment_hz;
+    uint8_t v_slide = 0, a_slide = 0;
+    v->v_ratio = TSE_R(0.0);
+    v->a_ratio = TSE_R(0.0);
+    for (int k = 0; k < 6; ++k) {
+        const tse_real first = tse_fabs(q_first[k] - q_from[k]) / t_first / lim->slide_vmax;
+        const tse_real vk = first > tm.v[k] ? first : tm.v[k];
+        const tse_real ak = tm.a[k] + tse_fabs(q_from[k] - q_start[k]) / (span * span) / lim->slide_amax;
+        if (vk > v->v_ratio) {
+            v->v_ratio = vk;
+            v_slide = (uint8_t)k;
+        }
+        if (ak > v->a_ratio) {
+            v->a_ratio = ak;
+            a_slide = (uint8_t)k;
+        }
+    }
+    v->worst.accel = v->a_ratio > v->v_ratio;
+    v->worst.slide = v->worst.accel ? a_slide : v_slide;
+    v->worst.ratio = v->worst.accel ? v->a_ratio : v->v_ratio;
+    v->per_segment = false;
+    return 0;
+}
+
+int fw_validate(const fw_move *mv, const tse_geometry *g, const fw_limits *lim, const tse_real q_from[6],
+                fw_validation *v, fw_plan_result *res)
+{
+    const int rc = prove(mv, g, lim, q_from, v, res);
+    if (rc <= 0)
+        return rc;
+    const uint32_t tried = v->pieces;
+    const int walked = fw_validate_per_segment(mv, g, lim, q_from, v, res);
+    v->pieces = tried;
+    return walked;
+}
