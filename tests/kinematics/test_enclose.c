@@ -219,11 +219,9 @@ static void test_random_pieces(void **state)
 static void test_point_piece(void **state)
 {
     (void)state;
-    tse_params p;
-    tse_params_default(&p);
     tse_geometry g;
     orc_geom og;
-    test_geometries(&p, &g, &og);
+    test_default_geometries(&g, &og);
     tse_ik_result centre;
     assert_int_equal(tse_ik(&g, g.home_pose, NULL, &centre), TSE_OK);
     const tse_piece piece = {{TSE_R(0.0), TSE_R(0.0), TSE_R(0.1)}, {TSE_R(0.0), TSE_R(0.0), TSE_R(0.0)}, TSE_R(0.0),
@@ -232,7 +230,7 @@ static void test_point_piece(void **state)
     assert_true(tse_ik_enclose(&g, &piece, g.home_pose, &centre, &e));
     for (int k = 0; k < 6; ++k) {
         /* the residual's rounding pad, 16 eps of terms of a few m^2, over |M| of a metre or two */
-        assert_true(e.q_hi[k] - e.q_lo[k] < 512 * TSE_REAL_EPS * (double)p.L);
+        assert_true(e.q_hi[k] - e.q_lo[k] < 512 * TSE_REAL_EPS * (double)g.p.L);
         assert_true(e.dq[k] >= fabs((double)e.dq_c[k]));
         assert_true(e.dq[k] - fabs((double)e.dq_c[k]) < (IS_FLOAT ? 1e-3 : 1e-9) * fabs((double)e.dq_c[k]) + 1e-12);
     }
@@ -249,11 +247,9 @@ static void test_point_piece(void **state)
 static void test_refusals(void **state)
 {
     (void)state;
-    tse_params p;
-    tse_params_default(&p);
     tse_geometry g;
     orc_geom og;
-    test_geometries(&p, &g, &og);
+    test_default_geometries(&g, &og);
     tse_ik_result centre;
     assert_int_equal(tse_ik(&g, g.home_pose, NULL, &centre), TSE_OK);
     tse_piece piece = {{TSE_R(0.0), TSE_R(0.0), TSE_R(1.0)}, {TSE_R(0.0), TSE_R(0.0), TSE_R(0.0)}, TSE_R(0.5),
