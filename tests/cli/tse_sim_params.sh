@@ -5,11 +5,7 @@
 # as opening the interface, which then fails with exit 1.)
 set -u
 T=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-check() { local name=$1; shift; if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $name"; fi; }
+. "$(dirname "$0")/../support/check.sh"
 
 "$T" --help 2>"$tmp/usage"; check "--help exits 0" test $? -eq 0
 check "usage names --params" grep -q -- "--params FILE" "$tmp/usage"
@@ -68,5 +64,4 @@ for bad in "" "0.1x" "1"; do
   check "--start '$bad' exits 2" test $rc -eq 2
 done
 
-echo "$pass passed, $fail failed"
-test $fail -eq 0
+check_done

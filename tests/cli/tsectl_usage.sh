@@ -5,11 +5,7 @@
 # is a few plain lines.
 set -u
 T=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-check() { local name=$1; shift; if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $name"; sed 's/^/  | /' "$tmp/e" 2>/dev/null | head -5; fi; }
+. "$(dirname "$0")/../support/check.sh"
 
 "$T" --help >"$tmp/e"; check "--help prints usage" grep -q "usage: tsectl" "$tmp/e"
 "$T" move --help >"$tmp/e" 2>&1; rc=$?
@@ -64,5 +60,4 @@ check "no such CAN interface exits 1" test $rc -eq 1
 check "the interface is named" grep -q nosuchcan0 "$tmp/e"
 "$T" params list >"$tmp/e"; check "params list needs no bus" grep -q "steps_per_m" "$tmp/e"
 check "params list shows SI units" grep -Eq "^slide_vmax +0.15 +m/s" "$tmp/e"
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+check_done

@@ -4,11 +4,7 @@
 # interface (no CAN here: exit 1).
 set -u
 T=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-check() { local name=$1; shift; if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAIL: $name"; fi; }
+. "$(dirname "$0")/../support/check.sh"
 
 "$T" --help 2>"$tmp/usage"; check "--help exits 0" test $? -eq 0
 check "usage names --fault" grep -q -- "\[--fault SPEC\]" "$tmp/usage"
@@ -36,5 +32,4 @@ check "a good spec gets as far as the interface (exit 1)" test $rc -eq 1
 check "it says so" grep -q "cannot open CAN interface nosuchcan0" "$tmp/err"
 check "no complaint about the spec" bash -c "! grep -q -- '--fault' '$tmp/err'"
 
-echo "$pass passed, $fail failed"
-test "$fail" -eq 0
+check_done
