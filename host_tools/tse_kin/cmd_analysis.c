@@ -8,15 +8,11 @@
 
 #include "commands.h"
 #include "csv.h"
+#include "haf_heights.h"
 
 /* The paper's figures for the prototype (docs/kinematics.md, "Forward kinematics, Jacobian, metrics"). */
 #define PAPER_HAF "11.487"
 #define PAPER_WORKSPACE "0.28"
-
-/* Default heights: this many, spread over the alpha stops' heights, kept this fraction off each end
- * (at the stops themselves the scissor is at a limit, not inside the workspace). */
-enum { HAF_DEFAULT_HEIGHTS = 9 };
-#define HAF_MARGIN 0.05
 
 const char cmd_haf_help[] =
     "usage: tse-kin haf [--params FILE] [--precision float|double] [--z Z1,Z2,...]\n"
@@ -35,7 +31,7 @@ const char cmd_haf_help[] =
 
 const char cmd_workspace_help[] =
     "usage: tse-kin workspace [--grid NR,NPHI,NZ] [--orientation R,P,Y] [--params FILE]\n"
-    "                         [--precision float|double]\n"
+    "                         [--precision float|double] [--points]\n"
     "\n"
     "Workspace percentage of the paper: counts the reachable points (status ok) of the cylindrical\n"
     "grid r_i = (L/2) i/(NR-1), phi_j = 2 pi j/NPHI, Z_k = L k/(NZ-1) at the fixed orientation\n"
@@ -44,6 +40,13 @@ const char cmd_workspace_help[] =
     "columns beside the paper's figure (paper: 0.28 for the prototype), and last\n"
     "  reachable,total,fraction\n"
     "with the fraction as %.6f.\n"
+    "\n"
+    "With --points, prints the grid points themselves instead, so that the workspace can be drawn:\n"
+    "'#' lines, the header and one row per point (Z, then r, then phi, as they are counted)\n"
+    "  x,y,z,status,scissor\n"
+    "with status and scissor as tse-kin ik answers the point (ok rows are the reachable points), and\n"
+    "last a '#' line with reachable,total,fraction. A progress bar goes to stderr when it is a\n"
+    "terminal and the grid takes more than a second.\n"
     "\n" KIN_HELP_PARAMS "\n" KIN_HELP_EXIT;
 
 static int finish(void)
@@ -55,15 +58,6 @@ static int finish(void)
     return KIN_EXIT_OK;
 }
 
-static int default_heights(const kin_param_values *p, double *z)
-{
-    const double L = p->v[TSE_PARAM_L];
-    const double lo = L * sin(p->v[TSE_PARAM_ALPHA_MIN]), hi = L * sin(p->v[TSE_PARAM_ALPHA_MAX]);
-    for (int i = 0; i < HAF_DEFAULT_HEIGHTS; ++i)
-        z[i] = lo + (hi - lo) * (HAF_MARGIN + (1.0 - 2.0 * HAF_MARGIN) * i / (HAF_DEFAULT_HEIGHTS - 1));
-    return HAF_DEFAULT_HEIGHTS;
-}
-
 int cmd_haf(const kin_run *run)
 {
     double z[KIN_MAX_Z];
@@ -72,7 +66,7 @@ int cmd_haf(const kin_run *run)
         for (int i = 0; i < n; ++i)
             z[i] = run->opt->z[i];
     } else {
-        n = default_heights(run->params, z);
+        n = kin_haf_default_heights(run->params, z);
     }
 
     /* The reference design of the HAF: the same one with the lowest link as long as the scissor. */
@@ -127,6 +121,8 @@ int cmd_haf(const kin_run *run)
 
 int cmd_workspace(const kin_run *run)
 {
+    if (run->opt->points)
+        return cmd_workspace_points(run);
     const int *g = run->opt->grid;
     const double *o = run->opt->orientation;
     long reachable = 0, total = 0;

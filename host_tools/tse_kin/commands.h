@@ -31,6 +31,17 @@ int cmd_haf(const kin_run *run);
 int cmd_workspace(const kin_run *run);
 int cmd_bench(const kin_run *run);
 int cmd_params(const kin_run *run);
+int cmd_sweep(const kin_run *run);
+int cmd_profile(const kin_run *run);
+int cmd_margins(const kin_run *run);
+/* workspace --points */
+int cmd_workspace_points(const kin_run *run);
+
+/* Checks of a command's arguments that options.c cannot make alone (how many positional arguments
+ * and what they say, options that exclude each other): 0, or -1 with the reason (exit 2).  main
+ * calls them before it reads a parameter file. */
+int cmd_sweep_check(const kin_options *o, char *err, size_t errlen);
+int cmd_profile_check(const kin_options *o, char *err, size_t errlen);
 
 extern const char cmd_ik_help[];
 extern const char cmd_fk_help[];
@@ -39,6 +50,9 @@ extern const char cmd_haf_help[];
 extern const char cmd_workspace_help[];
 extern const char cmd_bench_help[];
 extern const char cmd_params_help[];
+extern const char cmd_sweep_help[];
+extern const char cmd_profile_help[];
+extern const char cmd_margins_help[];
 
 /* Shared paragraphs of the usage texts. */
 #define KIN_HELP_PARAMS                                                                                      \

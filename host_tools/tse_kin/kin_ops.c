@@ -135,6 +135,55 @@ static tse_status workspace(const kin_ctx *c, int n_r, int n_phi, int n_z, const
     return tse_workspace(&c->g, n_r, n_phi, n_z, o, reachable, total);
 }
 
+static tse_status workspace_count(const kin_ctx *c, int n_r, int n_phi, int n_z, const double orientation[3],
+                                  long *reachable, long *total)
+{
+    tse_real o[3];
+    to_real(orientation, o, 3);
+    return tse_workspace_count(&c->g, n_r, n_phi, n_z, o, reachable, total);
+}
+
+static tse_status workspace_point(const kin_ctx *c, const int grid[3], int i, int j, int k,
+                                  const double orientation[3], double pose[6], int *scissor)
+{
+    tse_real o[3], p[6];
+    to_real(orientation, o, 3);
+    tse_status st = tse_workspace_pose(&c->g, grid[0], grid[1], grid[2], i, j, k, o, p);
+    to_double(p, pose, 6);
+    *scissor = 0;
+    if (st != TSE_OK)
+        return st;
+    tse_ik_result r;
+    st = tse_ik(&c->g, p, NULL, &r);
+    *scissor = st == TSE_OK ? 0 : r.scissor;
+    return st;
+}
+
+static tse_status profile(const kin_ctx *c, double z, kin_profile_out *out)
+{
+    tse_vertical_figures f;
+    const tse_status st = tse_vertical_profile(&c->g, (tse_real)z, &f);
+    to_double(f.sv, out->sv, 6);
+    out->sigma_z = (double)f.sigma_z;
+    out->mu_min = (double)f.mu_min;
+    out->nu = (double)f.nu;
+    return st;
+}
+
+static tse_status margins(const kin_ctx *c, const double pose[6], kin_margins_out *out)
+{
+    tse_real p[6];
+    to_real(pose, p, 6);
+    tse_ik_result r;
+    out->status = tse_ik(&c->g, p, NULL, &r);
+    out->scissor = out->status == TSE_OK ? 0 : r.scissor;
+    tse_margin_result m;
+    tse_margins(&c->g, p, &m);
+    to_double(m.mu, out->mu, 3);
+    out->nu = (double)m.nu;
+    return out->status;
+}
+
 const kin_ops KIN_PREC(kin_ops) = {
     .name = TSE_REAL_NAME,
     .create = create,
@@ -145,5 +194,9 @@ const kin_ops KIN_PREC(kin_ops) = {
     .sigma_z = sigma_z,
     .haf = haf,
     .workspace = workspace,
+    .workspace_count = workspace_count,
+    .workspace_point = workspace_point,
+    .profile = profile,
+    .margins = margins,
     .bench = kin_bench_run,
 };

@@ -35,6 +35,21 @@ typedef struct {
     double sv[6];      /* singular values of dp/dq, descending */
 } kin_jacobian_out;
 
+/* `tse-kin margins`: the contract's answer for a pose beside both singularity margins of its branch
+ * solutions, whatever the limits say (tse_margins). */
+typedef struct {
+    tse_status status; /* tse_ik's, every check of the contract */
+    int scissor;
+    double mu[3];      /* type-1 margin of each scissor's branch solution (NaN where none) */
+    double nu;         /* type-2 ratio (NaN unless all three scissors have a branch solution) */
+} kin_margins_out;
+
+/* `tse-kin profile`: tse_vertical_profile at one height. */
+typedef struct {
+    double sv[6];      /* singular values of dp/dq, descending */
+    double sigma_z, mu_min, nu;
+} kin_profile_out;
+
 /* Timings of one precision on one trajectory (see kin_bench.c). */
 typedef struct {
     double ik_cold_ns, ik_warm_ns, fk_ns; /* median over batches of the mean ns per pose */
@@ -60,6 +75,16 @@ typedef struct {
     tse_status (*haf)(const kin_ctx *c, double z, double *haf);
     tse_status (*workspace)(const kin_ctx *c, int n_r, int n_phi, int n_z, const double orientation[3],
                             long *reachable, long *total);
+    /* workspace's count by tse_workspace_count: the same numbers, faster (the sweep's). */
+    tse_status (*workspace_count)(const kin_ctx *c, int n_r, int n_phi, int n_z, const double orientation[3],
+                                  long *reachable, long *total);
+    /* Grid point (i, j, k) of tse_workspace's grid (tse_workspace_pose, grid = n_r, n_phi, n_z) and
+     * tse_ik's answer there without a seed, the answer tse_workspace counts. */
+    tse_status (*workspace_point)(const kin_ctx *c, const int grid[3], int i, int j, int k,
+                                  const double orientation[3], double pose[6], int *scissor);
+    /* All NaN unless the status is ok. */
+    tse_status (*profile)(const kin_ctx *c, double z, kin_profile_out *out);
+    tse_status (*margins)(const kin_ctx *c, const double pose[6], kin_margins_out *out);
     /* Times ik cold, ik warm and fk on the n poses, `repeats` batches each. */
     int (*bench)(const kin_ctx *c, const double (*poses)[6], int n, int repeats, kin_bench_result *out);
 } kin_ops;

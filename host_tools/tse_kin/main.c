@@ -16,24 +16,33 @@ typedef struct {
     int needs_design; /* whether main builds the design in the chosen precision */
     int (*run)(const kin_run *run);
     const char *help;
+    int (*check)(const kin_options *o, char *err, size_t errlen); /* NULL: options.c's checks suffice */
 } command;
 
 static const command commands[] = {
     {"ik", "poses -> status,scissor,s_a1,s_b1,s_a2,s_b2,s_a3,s_b3 (stdin to stdout)",
-     KIN_OPT_PARAMS | KIN_OPT_PRECISION, 1, cmd_ik, cmd_ik_help},
+     KIN_OPT_PARAMS | KIN_OPT_PRECISION, 1, cmd_ik, cmd_ik_help, NULL},
     {"fk", "slides [+ seed pose] -> status,scissor,x,y,z,roll,pitch,yaw", KIN_OPT_PARAMS | KIN_OPT_PRECISION, 1,
-     cmd_fk, cmd_fk_help},
+     cmd_fk, cmd_fk_help, NULL},
     {"jacobian", "poses -> status,scissor, dq/dp (36), singular values of dp/dq (6)",
-     KIN_OPT_PARAMS | KIN_OPT_PRECISION, 1, cmd_jacobian, cmd_jacobian_help},
+     KIN_OPT_PARAMS | KIN_OPT_PRECISION, 1, cmd_jacobian, cmd_jacobian_help, NULL},
     {"haf", "vertical gear ratio sigma_z and the Height Amplification Factor",
-     KIN_OPT_PARAMS | KIN_OPT_PRECISION | KIN_OPT_Z, 1, cmd_haf, cmd_haf_help},
+     KIN_OPT_PARAMS | KIN_OPT_PRECISION | KIN_OPT_Z, 1, cmd_haf, cmd_haf_help, NULL},
     {"workspace", "reachable fraction of the paper's cylindrical grid",
-     KIN_OPT_PARAMS | KIN_OPT_PRECISION | KIN_OPT_GRID | KIN_OPT_ORIENTATION, 1, cmd_workspace,
-     cmd_workspace_help},
+     KIN_OPT_PARAMS | KIN_OPT_PRECISION | KIN_OPT_GRID | KIN_OPT_ORIENTATION | KIN_OPT_POINTS, 1, cmd_workspace,
+     cmd_workspace_help, NULL},
     {"bench", "timing of inverse and forward kinematics, double and float", KIN_OPT_PARAMS | KIN_OPT_N, 0,
-     cmd_bench, cmd_bench_help},
+     cmd_bench, cmd_bench_help, NULL},
     {"params", "a parameter file of the defaults, every key with its unit and rule", 0, 0, cmd_params,
-     cmd_params_help},
+     cmd_params_help, NULL},
+    {"sweep", "PARAM FROM TO N: HAF and workspace of N designs (the paper's design study)",
+     KIN_OPT_ARGS | KIN_OPT_PARAMS | KIN_OPT_PRECISION | KIN_OPT_GRID | KIN_OPT_JOBS, 1, cmd_sweep,
+     cmd_sweep_help, cmd_sweep_check},
+    {"profile", "singular values, sigma_z and both margins along the vertical axis",
+     KIN_OPT_PARAMS | KIN_OPT_PRECISION | KIN_OPT_Z | KIN_OPT_N, 1, cmd_profile, cmd_profile_help,
+     cmd_profile_check},
+    {"margins", "poses -> status,scissor,mu1,mu2,mu3,nu (where singularities lie)",
+     KIN_OPT_PARAMS | KIN_OPT_PRECISION, 1, cmd_margins, cmd_margins_help, NULL},
 };
 enum { N_COMMANDS = (int)(sizeof commands / sizeof commands[0]) };
 
@@ -52,10 +61,12 @@ static void print_usage(FILE *f)
           "options (which command takes which: see its --help):\n"
           "  --params FILE              design parameters (default: the paper's prototype)\n"
           "  --precision float|double   library build to use (default double)\n"
-          "  --grid NR,NPHI,NZ          workspace grid (default 21,36,41)\n"
+          "  --grid NR,NPHI,NZ          workspace grid (default 21,36,41; sweep 16,24,32)\n"
           "  --orientation R,P,Y        workspace orientation (default 0,0,0)\n"
-          "  --z Z1,Z2,...              haf heights (default 9 inside the alpha stops)\n"
-          "  --n N                      bench trajectory length (default 2000)\n"
+          "  --z Z1,Z2,...              haf and profile heights (default 9, 60 inside the alpha stops)\n"
+          "  --n N                      bench trajectory length (default 2000); profile heights (60)\n"
+          "  --points                   workspace: the grid points, not their count\n"
+          "  --jobs J                   sweep threads (default: the number of cores)\n"
           "  --help                     usage, of the tool or of a command\n"
           "\n" KIN_HELP_ROWS "\n" KIN_HELP_PARAMS "\n" KIN_HELP_EXIT,
           f);
@@ -88,6 +99,8 @@ static int run_command(const command *c, int argc, char **argv)
     kin_options opt;
     kin_options_default(&opt);
     if (kin_options_parse(argc, argv, c->options, &opt, msg, sizeof msg) != 0)
+        return usage_error(cmd_prefix, msg);
+    if (c->check && c->check(&opt, msg, sizeof msg) != 0)
         return usage_error(cmd_prefix, msg);
 
     kin_param_values params;
@@ -145,7 +158,8 @@ int main(int argc, char **argv)
     if (!c) {
         char msg[256];
         snprintf(msg, sizeof msg,
-                 "unknown command '%.60s' (commands: ik, fk, jacobian, haf, workspace, bench, params)", name);
+                 "unknown command '%.60s' (commands: ik, fk, jacobian, haf, workspace, bench, params, sweep, "
+                 "profile, margins)", name);
         return usage_error(NULL, msg);
     }
     /* --help wins over anything else on the line, even a mistake. */

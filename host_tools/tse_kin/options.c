@@ -22,11 +22,18 @@ void kin_options_default(kin_options *o)
 typedef struct {
     const char *name;
     unsigned bit;
+    int takes_value; /* 0: a switch */
 } option_def;
 
 static const option_def defs[] = {
-    {"--params", KIN_OPT_PARAMS}, {"--precision", KIN_OPT_PRECISION},     {"--grid", KIN_OPT_GRID},
-    {"--orientation", KIN_OPT_ORIENTATION}, {"--z", KIN_OPT_Z}, {"--n", KIN_OPT_N},
+    {"--params", KIN_OPT_PARAMS, 1},
+    {"--precision", KIN_OPT_PRECISION, 1},
+    {"--grid", KIN_OPT_GRID, 1},
+    {"--orientation", KIN_OPT_ORIENTATION, 1},
+    {"--z", KIN_OPT_Z, 1},
+    {"--n", KIN_OPT_N, 1},
+    {"--points", KIN_OPT_POINTS, 0},
+    {"--jobs", KIN_OPT_JOBS, 1},
 };
 
 /* A whole decimal number in [lo, hi], nothing around it. */
@@ -94,6 +101,7 @@ static int apply(unsigned bit, const char *name, const char *val, kin_options *o
         o->use_float = !strcmp(val, "float");
         return 0;
     case KIN_OPT_GRID:
+        o->grid_set = 1;
         if (parse_grid(val, o->grid) != 0) {
             snprintf(err, errlen,
                      "%s takes NR,NPHI,NZ: whole numbers with NR >= 2, NPHI >= 1, NZ >= 2, each at most %ld and "
@@ -119,11 +127,22 @@ static int apply(unsigned bit, const char *name, const char *val, kin_options *o
         return 0;
     }
     case KIN_OPT_N:
+        o->n_set = 1;
         if (parse_long(val, 2, KIN_BENCH_MAX_N, &o->bench_n) != 0) {
             snprintf(err, errlen, "%s takes a whole number from 2 to %ld; got '%s'", name, KIN_BENCH_MAX_N, val);
             return -1;
         }
         return 0;
+    case KIN_OPT_JOBS: {
+        long j;
+        if (parse_long(val, 1, KIN_MAX_JOBS, &j) != 0) {
+            snprintf(err, errlen, "%s takes a whole number of threads from 1 to %d; got '%s'", name, KIN_MAX_JOBS,
+                     val);
+            return -1;
+        }
+        o->jobs = (int)j;
+        return 0;
+    }
     default:
         break;
     }
@@ -136,6 +155,14 @@ int kin_options_parse(int n, char *const *args, unsigned allowed, kin_options *o
 {
     for (int i = 0; i < n; ++i) {
         const char *a = args[i];
+        if ((allowed & KIN_OPT_ARGS) && strncmp(a, "--", 2) != 0) {
+            if (o->n_args == KIN_MAX_ARGS) {
+                snprintf(err, errlen, "unexpected argument '%s' (at most %d are taken)", a, KIN_MAX_ARGS);
+                return -1;
+            }
+            o->args[o->n_args++] = a;
+            continue;
+        }
         const char *eq = strncmp(a, "--", 2) ? NULL : strchr(a, '=');
         const size_t name_len = eq ? (size_t)(eq - a) : strlen(a);
         const option_def *d = NULL;
@@ -149,6 +176,14 @@ int kin_options_parse(int n, char *const *args, unsigned allowed, kin_options *o
         if (!(allowed & d->bit)) {
             snprintf(err, errlen, "this command does not take %s", d->name);
             return -1;
+        }
+        if (!d->takes_value) {
+            if (eq) {
+                snprintf(err, errlen, "%s takes no value; got '%s'", d->name, a);
+                return -1;
+            }
+            o->points = 1; /* --points is the only switch */
+            continue;
         }
         const char *val;
         if (eq) {

@@ -16,7 +16,10 @@ enum {
     KIN_OPT_GRID = 1u << 2,        /* --grid NR,NPHI,NZ */
     KIN_OPT_ORIENTATION = 1u << 3, /* --orientation R,P,Y */
     KIN_OPT_Z = 1u << 4,           /* --z Z1,Z2,... */
-    KIN_OPT_N = 1u << 5            /* --n N */
+    KIN_OPT_N = 1u << 5,           /* --n N */
+    KIN_OPT_POINTS = 1u << 6,      /* --points (a switch: no value) */
+    KIN_OPT_JOBS = 1u << 7,        /* --jobs J */
+    KIN_OPT_ARGS = 1u << 8         /* positional arguments: anything not starting with "--" */
 };
 
 #define KIN_MAX_Z 256
@@ -24,6 +27,9 @@ enum {
 #define KIN_GRID_MAX_AXIS 100000L
 #define KIN_GRID_MAX_POINTS 100000000L
 #define KIN_BENCH_MAX_N 10000000L
+/* Positional arguments a command may take (sweep's PARAM FROM TO N), and threads of --jobs. */
+#define KIN_MAX_ARGS 4
+#define KIN_MAX_JOBS 256
 
 #define KIN_DEFAULT_GRID_R 21
 #define KIN_DEFAULT_GRID_PHI 36
@@ -37,13 +43,20 @@ typedef struct {
     double orientation[3];    /* roll, pitch, yaw [rad] */
     double z[KIN_MAX_Z];      /* --z heights [m] */
     int n_z;                  /* 0: the command's default heights */
-    long bench_n;             /* poses of the bench trajectory */
+    long bench_n;             /* poses of the bench trajectory (and profile's heights) */
+    int grid_set, n_set;      /* --grid, --n given (commands with other defaults than these) */
+    int points;               /* --points */
+    int jobs;                 /* --jobs; 0: the number of cores */
+    const char *args[KIN_MAX_ARGS]; /* positional arguments, in order */
+    int n_args;
 } kin_options;
 
 void kin_options_default(kin_options *o);
 
 /* Parses args[0..n) for a command that takes the options in `allowed`.  Returns 0, or -1 with the
- * reason in err.  --help is not an option here: the caller looks for it first. */
+ * reason in err.  --help is not an option here: the caller looks for it first.  With KIN_OPT_ARGS,
+ * an argument that does not start with "--" is positional (so "-30" is a number, not an option),
+ * at most KIN_MAX_ARGS of them; the command judges how many and what they say. */
 int kin_options_parse(int n, char *const *args, unsigned allowed, kin_options *o, char *err, size_t errlen);
 
 #endif

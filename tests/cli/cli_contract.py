@@ -22,6 +22,7 @@ import re
 import subprocess
 import sys
 import tempfile
+import time
 
 TOOL = sys.argv[1]
 failures = []
@@ -476,6 +477,265 @@ check("the template gives eta in radians with degrees in the comment",
       and "# rad (30 deg)" in eta_line[0], repr(eta_line))
 check("every template line that sets a key has a comment with its unit",
       all("#" in l for l in tpl.split("\n") if l and not l.startswith("#")), tpl)
+
+# ---------------------------------------------------------------- the design study (issue 11)
+# sweep, profile, margins and workspace --points: usage, parameter files, output, and the figures
+# against the hand algebra of the module docstring; consistency with haf, workspace and ik where
+# the commands promise the same figure.  tests/cli/study_oracle.py checks them against mpmath.
+DEG = math.pi / 180
+Z_LO, Z_HI = 0.324, 1.619  # L sin(alpha_min), L sin(alpha_max) of the prototype
+
+
+def data_lines(out):
+    return [l for l in out.split("\n") if l and not l.startswith("#")]
+
+
+def table(out):
+    lines = data_lines(out)
+    head = lines[0].split(",") if lines else []
+    return head, [dict(zip(head, l.split(","))) for l in lines[1:]]
+
+
+def mu_axis(z, L=PROTO["L"], k1=PROTO["k1"], eta=PROTO["eta"], k3=PROTO["k3"], k4=PROTO["k4"]):
+    """Type-1 margin on the vertical axis: with s_A = s_B = s and u = v = u0, M has rows
+    2 (s - u0) (1, -1) and (2 (s - u0) - 2 G, -2 G), G = g s (1 + cos 2 eta), and
+    det M = 4 (s - u0) (D s - u0)."""
+    s, _, _ = vertical(z, L, k1, eta, k3, k4)
+    l0 = k1 * L
+    g = (1 - (L / l0) ** 2) / 4
+    u0 = (k4 - k3) * L * math.sin(eta)
+    D = 1 - 2 * g * (1 + math.cos(2 * eta))
+    G = g * s * (1 + math.cos(2 * eta))
+    det = 4 * (s - u0) * (D * s - u0)
+    return det / (2 * math.sqrt(2) * abs(s - u0) * 2 * math.sqrt((s - u0 - G) ** 2 + G * G))
+
+
+def haf_default_mean(**design):
+    """tse-kin haf's default heights (9, 5 % inside the stops: its help) and the mean HAF there."""
+    zs = [Z_LO + (Z_HI - Z_LO) * (0.05 + 0.9 * i / 8) for i in range(9)]
+    return sum(vertical(z, **design)[2] / vertical(z, **dict(design, k1=1.0))[2] for z in zs) / 9
+
+
+for args, name, says in [
+        (["sweep"], "sweep without arguments", "PARAM FROM TO N"),
+        (["sweep", "k1", "0", "1"], "sweep with three arguments", "got 3"),
+        (["sweep", "k1", "0", "1", "3", "4"], "sweep with five arguments", "'4'"),
+        (["sweep", "k2", "0", "1", "3"], "sweep of k2", "eta_deg"),
+        (["sweep", "slide_vmax", "0", "1", "3"], "sweep of a controller parameter", "controller"),
+        (["sweep", "K1", "0", "1", "3"], "sweep of an unknown key", "'K1'"),
+        (["sweep", "k1", "a", "1", "3"], "sweep FROM not a number", "FROM"),
+        (["sweep", "k1", "0", "inf", "3"], "sweep TO infinite", "TO"),
+        (["sweep", "k1", "0", "1", "0"], "sweep of 0 designs", "N"),
+        (["sweep", "k1", "0", "1", "2.5"], "sweep of 2.5 designs", "N"),
+        (["sweep", "k1", "0", "1", "1e1"], "sweep N in exponent form", "N"),
+        (["sweep", "k1", "0", "1", "100001"], "sweep of too many designs", "100000"),
+        (["sweep", "k1", "0", "1", "1"], "one design from a range", "FROM and TO"),
+        (["sweep", "k1", "0", "1", "3", "--jobs", "0"], "sweep --jobs 0", "--jobs"),
+        (["sweep", "k1", "0", "1", "3", "--jobs", "x"], "sweep --jobs x", "--jobs"),
+        (["sweep", "k1", "0", "1", "3", "--jobs", "257"], "sweep --jobs 257", "--jobs"),
+        (["sweep", "k1", "0", "1", "3", "--orientation", "0,0,0"], "sweep --orientation", "--orientation"),
+        (["sweep", "k1", "0", "1", "3", "--grid", "1,2,3"], "sweep with a bad grid", "--grid"),
+        (["profile", "--z", "1", "--n", "5"], "profile --z and --n", "not both"),
+        (["profile", "--n", "1"], "profile --n 1", "--n"),
+        (["profile", "0.5"], "profile with a stray argument", "'0.5'"),
+        (["workspace", "--points=yes"], "--points with a value", "--points"),
+        (["ik", "--points"], "ik --points", "--points"),
+        (["margins", "--grid", "2,1,2"], "margins --grid", "--grid"),
+        (["margins", "x"], "margins with a stray argument", "'x'")]:
+    rc, out, err = run(args)
+    check(f"{name} exits 2", rc == 2, f"rc {rc}")
+    check(f"{name} says why on stderr only, naming {says!r}", out == "" and says in err, f"out {out!r} err {err!r}")
+for cmd in ("sweep", "profile", "margins"):
+    for form in ([cmd, "--help"], ["help", cmd], [cmd, "k1", "--bogus", "-h"]):
+        rc, out, err = run(form)
+        check(f"{' '.join(form)} prints its usage", rc == 0 and out.startswith(f"usage: tse-kin {cmd}") and err == "",
+              f"rc {rc} {out[:60]!r}")
+rc, out, err = run(["--help"])
+check("tse-kin --help lists sweep, profile, margins and --points",
+      all(f"\n  {c} " in out for c in ("sweep", "profile", "margins")) and "--points" in out and "--jobs" in out, out)
+rc, out, err = run(["workspace", "--help"])
+check("workspace --help documents --points", "--points" in out and "x,y,z,status,scissor" in out, out)
+bad = write("study_bad.params", "k1 = 0.3\nk1 = 0.4\n")
+for args in (["sweep", "k1", "0.2", "0.5", "2"], ["profile"], ["margins"]):
+    rc, out, err = run(args + ["--params", bad], good + "\n")
+    check(f"{args[0]} with a bad parameter file exits 1 naming its line", rc == 1 and f"{bad}:2:" in err and out == "",
+          f"rc {rc} {err!r}")
+rc, out, err = run(["sweep", "k1", "0", "1", "3", "--params", os.path.join(tmp, "none.params")])
+check("sweep with a missing parameter file exits 1 naming it", rc == 1 and "none.params" in err, err)
+
+# sweep: the rows, the spacing, the HAF of the hand algebra, the workspace of `tse-kin workspace`.
+for prec, tol in (("double", 1e-9), ("float", 1e-4)):
+    rc, out, err = run(["sweep", "k1", "0.2", "1", "5", "--grid", "5,4,5", "--precision", prec])
+    lines = out.split("\n")[:-1]
+    head_at = [i for i, l in enumerate(lines) if not l.startswith("#")]
+    check(f"sweep {prec}: comments, then the header, then 5 rows", rc == 0 and err == "" and len(head_at) == 6
+          and head_at[0] == len(lines) - 6 and lines[head_at[0]] == "param,value,haf,workspace", out)
+    head, rows = table(out)
+    want_v = [0.2, 0.4, 0.6000000000000001, 0.8, 1.0]
+    check(f"sweep {prec}: k1 evenly from 0.2 to 1, the ends exact",
+          [r.get("param") for r in rows] == ["k1"] * 5 and [r.get("value") for r in rows][-1] == "1"
+          and all(abs(float(r["value"]) - w) < 1e-15 for r, w in zip(rows, want_v)), out)
+    for r in rows:
+        k1 = float(r["value"])
+        want = haf_default_mean(k1=k1)
+        check(f"sweep {prec}: HAF at k1 = {k1:g} is the hand algebra's mean over haf's heights",
+              rel(float(r["haf"]), want) < tol, f"{r['haf']} vs {want}")
+        f = write(f"sweep_k1_{k1:g}.params", f"k1 = {k1!r}\n")
+        rc2, w, err2 = run(["workspace", "--params", f, "--grid", "5,4,5", "--precision", prec])
+        reach, total = (int(x) for x in w.split("\n")[-2].split(",")[:2])
+        check(f"sweep {prec}: workspace at k1 = {k1:g} is tse-kin workspace's fraction, unrounded",
+              float(r["workspace"]) == reach / total, f"{r['workspace']} vs {reach}/{total}")
+rc, one, err = run(["sweep", "k1", "0.2647", "0.2647", "1"])
+rc2, w, err2 = run(["workspace", "--grid", "16,24,32"])
+reach, total = (int(x) for x in w.split("\n")[-2].split(",")[:2])
+head, rows = table(one)
+check("sweep's default grid is the paper's 16 x 24 x 32", rc == 0 and "16 x 24 x 32" in one and len(rows) == 1
+      and float(rows[0]["workspace"]) == reach / total, one)
+rc, a, err = run(["sweep", "k1", "0.1", "1", "7", "--grid", "4,6,5", "--jobs", "1"])
+rc2, b, err2 = run(["sweep", "k1", "0.1", "1", "7", "--grid", "4,6,5", "--jobs", "3"])
+check("sweep: --jobs 1 and --jobs 3 give the same rows in the same order",
+      rc == rc2 == 0 and data_lines(a) == data_lines(b) and "1 thread" in a and "3 threads" in b, f"{a}\n{b}")
+rc, out, err = run(["sweep", "k1", "0", "1", "3", "--grid", "3,3,3"])
+head, rows = table(out)
+check("sweep: an invalid design keeps its row with nan figures, the others go on",
+      rc == 0 and len(rows) == 3 and rows[0] == {"param": "k1", "value": "0", "haf": "nan", "workspace": "nan"}
+      and all(NUMBER.match(r["haf"]) and r["haf"] != "nan" for r in rows[1:]), out)
+check("sweep: the invalid design's comment names the parameter and its rule",
+      "# k1 = 0: not a valid design: k1 = 0, needs 0 < k1 <= 1" in out, out)
+rc, out, err = run(["sweep", "eta_deg", "60", "95", "2", "--grid", "3,3,3"])
+check("sweep in degrees: the refusal speaks degrees", rc == 0 and "eta_deg = 95" in out and
+      "needs -90 < eta_deg < 90" in out and out.rstrip().endswith("eta_deg,95,nan,nan"), out)
+rc, out, err = run(["sweep", "alpha_min_deg", "20", "80", "2", "--grid", "3,3,3"])
+check("sweep: a design refused for another parameter names that one",
+      rc == 0 and "alpha_min_deg = 80: not a valid design: alpha_max = " in out, out)
+rc, a, err = run(["sweep", "eta_deg", "-30", "60", "4", "--grid", "4,6,5"])
+rc2, b, err2 = run(["sweep", "eta", repr(-math.pi / 6), repr(math.pi / 3), "4", "--grid", "4,6,5"])
+ha, ra = table(a)
+hb, rb = table(b)
+check("sweep of eta_deg and of eta (radians) give the same figures",
+      len(ra) == len(rb) == 4 and all(rel(float(x["haf"]), float(y["haf"])) < 1e-12 and x["workspace"] == y["workspace"]
+                                      for x, y in zip(ra, rb)), f"{a}\n{b}")
+for x in ra:
+    eta = float(x["value"]) * DEG
+    check(f"sweep: HAF at k2 = {float(x['value']):g} deg is the hand algebra's", rel(float(x["haf"]),
+          haf_default_mean(eta=eta)) < 1e-9, x["haf"])
+short = write("study_short.params", "s_max = 0.45\nk3 = 0.05\n")
+rc, out, err = run(["sweep", "k4", "0.05", "0.2", "3", "--grid", "5,6,7", "--params", short])
+head, rows = table(out)
+for r in rows:
+    k4 = float(r["value"])
+    f = write(f"study_k4_{k4:g}.params", f"s_max = 0.45\nk3 = 0.05\nk4 = {k4!r}\n")
+    rc2, w, err2 = run(["workspace", "--params", f, "--grid", "5,6,7"])
+    reach, total = (int(x) for x in w.split("\n")[-2].split(",")[:2])
+    check(f"sweep --params: k4 = {k4:g} on the file's design (stroke, k3) as workspace counts it",
+          float(r["workspace"]) == reach / total and rel(float(r["haf"]), haf_default_mean(k3=0.05, k4=k4)) < 1e-9,
+          f"{r} vs {reach}/{total}")
+
+# The progress bar: on a terminal's stderr after a second, never on stdout, nothing in a pipe.
+import pty  # noqa: E402
+long_sweep = ["sweep", "k1", "0.1", "1", "120", "--grid", "16,24,32", "--jobs", "1"]
+rc, quiet, quiet_err = run(long_sweep, timeout=600)
+master, slave = pty.openpty()
+t0 = time.monotonic()
+proc = subprocess.run([TOOL] + long_sweep, stdout=subprocess.PIPE, stderr=slave, timeout=600)
+elapsed = time.monotonic() - t0
+os.close(slave)
+bar = b""
+while True:
+    try:
+        chunk = os.read(master, 65536)
+    except OSError:
+        break
+    if not chunk:
+        break
+    bar += chunk
+os.close(master)
+check("sweep: no progress bar when stderr is not a terminal", rc == 0 and quiet_err == "", repr(quiet_err[:200]))
+check("sweep: the same stdout with a terminal's stderr", proc.returncode == 0 and proc.stdout.decode() == quiet)
+if elapsed > 1.5:
+    check("sweep: a progress bar on a terminal's stderr, redrawn in place and erased",
+          b"\rsweep k1 [" in bar and b"%" in bar and bar.endswith(b"\r"), repr(bar[:300]))
+else:
+    print(f"note: the long sweep took {elapsed:.2f} s, too short to see its progress bar")
+
+# profile: the hand algebra on the axis.
+zs = [0.5, 1.0, 1.4]
+for prec, tol in (("double", 1e-9), ("float", 1e-4)):
+    rc, out, err = run(["profile", "--z", ",".join(map(str, zs)), "--precision", prec])
+    head, rows = table(out)
+    check(f"profile {prec}: header and a row per height", rc == 0 and err == "" and head ==
+          ["z", "sv1", "sv2", "sv3", "sv4", "sv5", "sv6", "sigma_z", "mu_min", "nu"] and len(rows) == 3, out)
+    for z, r in zip(zs, rows):
+        sv = [float(r[f"sv{k}"]) for k in range(1, 7)]
+        sig = vertical(z)[2]
+        check(f"profile {prec} z={z}: sigma_z and mu_min of the hand algebra",
+              float(r["z"]) == z and rel(float(r["sigma_z"]), sig) < tol and abs(float(r["mu_min"]) - mu_axis(z)) < tol,
+              f"{r} vs {sig}, {mu_axis(z)}")
+        check(f"profile {prec} z={z}: six positive singular values, descending, sigma_z one of them",
+              all(a >= b > 0 for a, b in zip(sv, sv[1:])) and any(rel(x, sig) < tol for x in sv), repr(sv))
+        check(f"profile {prec} z={z}: nu in (0, 1]", 0 < float(r["nu"]) <= 1, r["nu"])
+rc, out, err = run(["jacobian"], "0,0,1,0,0,0\n")
+jsv = [float(x) for x in out.strip().split(",")[38:44]]
+rc, out, err = run(["profile", "--z", "1"])
+head, rows = table(out)
+check("profile's singular values are jacobian's at the same pose",
+      all(rel(float(rows[0][f"sv{k + 1}"]), jsv[k]) < 1e-12 for k in range(6)), f"{rows} vs {jsv}")
+rc, out, err = run(["profile"])
+head, rows = table(out)
+z = [float(r["z"]) for r in rows]
+check("profile default: 60 heights from L sin(alpha_min) to L sin(alpha_max), both exact, evenly",
+      rc == 0 and len(rows) == 60 and abs(z[0] - Z_LO) < 1e-12 and abs(z[-1] - Z_HI) < 1e-12
+      and all(abs(b - a - (Z_HI - Z_LO) / 59) < 1e-12 for a, b in zip(z, z[1:])), out[:300])
+rc, out, err = run(["profile", "--n", "5"])
+check("profile --n 5: five heights", rc == 0 and len(table(out)[1]) == 5, out)
+rc, out, err = run(["profile", "--z", "3"])
+check("profile above full extension: nan for every figure", rc == 0 and data_lines(out)[1] == "3" + ",nan" * 9, out)
+
+# margins: the row rules, ik's verdict, the margins of the axis.
+rc, out, err = run(["margins"], "abc\n0,0,1,0,0,0\n1,2\n")
+outl = out.split("\n")[:-1]
+check("margins: one line per line, malformed ones invalid,0 and four nan",
+      rc == 0 and len(outl) == 3 and invalid_line(outl[0], 4) and invalid_line(outl[2], 4) and
+      outl[1].startswith("ok,0,"), out)
+rc, out, err = run(["margins"], "x,y,z,roll,pitch,yaw\n0,0,1,0,0,0\n")
+check("margins: a header answered by its own", out.split("\n")[0] == "status,scissor,mu1,mu2,mu3,nu", out)
+for prec, tol in (("double", 1e-9), ("float", 1e-4)):
+    axis = [0.2, 0.5, 1.0, 1.4, 1.65]  # 0.2 and 1.65 outside the stops: alpha, margins still given
+    rc, out, err = run(["margins", "--precision", prec], "".join(f"0,0,{z},0,0,0\n" for z in axis))
+    rc2, pr, err2 = run(["profile", "--precision", prec, "--z", ",".join(map(str, axis))])
+    nus = [r["nu"] for r in table(pr)[1]]
+    for z, line, nu in zip(axis, out.split("\n"), nus):
+        f = fields(line)
+        want = "ok" if Z_LO < z < Z_HI else "alpha"
+        check(f"margins {prec} z={z}: {want}, each mu of the hand algebra whatever the stops say, nu as profile's",
+              f[0] == want and all(abs(float(x) - mu_axis(z)) < tol for x in f[2:5]) and
+              abs(float(f[5]) - float(nu)) < tol, f"{line} vs {mu_axis(z)}, {nu}")
+rc, out, err = run(["margins"], "\n".join(poses[:120]) + "\n")
+rc2, ik_out, err2 = run(["ik"], "\n".join(poses[:120]) + "\n")
+check("margins: status and scissor are ik's for every pose",
+      rc == rc2 == 0 and [l.split(",")[:2] for l in out.split("\n")] == [l.split(",")[:2] for l in ik_out.split("\n")])
+check("margins: every line status,scissor and four numbers", all(well_formed(l, 4) for l in out.split("\n")[:-1]))
+
+# workspace --points: the grid itself, and the points workspace counts.
+for orient in ("0,0,0", "0,0.3490658503988659,0"):
+    rc, out, err = run(["workspace", "--points", "--grid", "4,6,5", "--orientation", orient])
+    head, rows = table(out)
+    rc2, w, err2 = run(["workspace", "--grid", "4,6,5", "--orientation", orient])
+    reach = int(w.split("\n")[-2].split(",")[0])
+    check(f"workspace --points ({orient}): header and 4*6*5 rows", rc == 0 and
+          head == ["x", "y", "z", "status", "scissor"] and len(rows) == 120, out[:300])
+    grid = [(PROTO["L"] / 2 * i / 3, 2 * math.pi * j / 6, PROTO["L"] * k / 4)
+            for k in range(5) for i in range(4) for j in range(6)]
+    check(f"workspace --points ({orient}): the paper's grid, Z then r then phi",
+          len(rows) == 120 and all(abs(float(r["x"]) - ri * math.cos(p)) < 1e-12 and
+                                   abs(float(r["y"]) - ri * math.sin(p)) < 1e-12 and abs(float(r["z"]) - zk) < 1e-12
+                                   for r, (ri, p, zk) in zip(rows, grid)), out[:400])
+    check(f"workspace --points ({orient}): its ok rows are what workspace counts",
+          sum(r["status"] == "ok" for r in rows) == reach and reach > 0, f"{reach}")
+    check(f"workspace --points ({orient}): statuses named, scissor 0 exactly when ok",
+          all(r["status"] in STATUSES and (r["status"] == "ok") == (r["scissor"] == "0") for r in rows))
+    check(f"workspace --points ({orient}): no negative zero, the count last",
+          "-0," not in out and out.split("\n")[-2].startswith(f"# reachable,total,fraction: {reach},120,"), out[-200:])
 
 print(f"{passes} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)

@@ -121,12 +121,54 @@ static void test_refusals(void **state)
     expect_refused("--n -5", ALL, "--n takes a whole number");
 }
 
+/* The design study's options: the --points switch, --jobs, positional arguments (sweep's
+ * PARAM FROM TO N, negative numbers included), and the flags that tell a command's own defaults
+ * from values given. */
+static void test_study_options(void **state)
+{
+    (void)state;
+    const unsigned sweep = KIN_OPT_ARGS | KIN_OPT_PARAMS | KIN_OPT_GRID | KIN_OPT_JOBS;
+    kin_options o;
+    expect_ok("eta_deg -60 60 --jobs 3 25", sweep, &o);
+    assert_int_equal(o.n_args, 4);
+    assert_string_equal(o.args[0], "eta_deg");
+    assert_string_equal(o.args[1], "-60");
+    assert_string_equal(o.args[2], "60");
+    assert_string_equal(o.args[3], "25");
+    assert_int_equal(o.jobs, 3);
+    assert_int_equal(o.grid_set, 0);
+    expect_ok("k1 0 1 5 --grid=4,6,5 --jobs=1", sweep, &o);
+    assert_int_equal(o.grid_set, 1);
+    assert_int_equal(o.grid[0], 4);
+    assert_int_equal(o.jobs, 1);
+    expect_ok("", sweep, &o);
+    assert_int_equal(o.n_args, 0);
+    assert_int_equal(o.jobs, 0);
+    expect_refused("a b c d e", sweep, "'e'");
+    expect_refused("k1 0 1 5 --jobs 0", sweep, "--jobs");
+    expect_refused("k1 0 1 5 --jobs 257", sweep, "--jobs");
+    expect_refused("k1 0 1 5 --jobs", sweep, "--jobs needs a value");
+    expect_refused("k1", ALL, "unexpected argument 'k1'");
+    expect_ok("--points --grid 3,3,3", KIN_OPT_POINTS | KIN_OPT_GRID, &o);
+    assert_int_equal(o.points, 1);
+    expect_ok("--grid 3,3,3", KIN_OPT_POINTS | KIN_OPT_GRID, &o);
+    assert_int_equal(o.points, 0);
+    expect_refused("--points=1", KIN_OPT_POINTS, "--points takes no value");
+    expect_refused("--points", ALL, "does not take --points");
+    expect_ok("--n 7", KIN_OPT_N, &o);
+    assert_int_equal(o.n_set, 1);
+    assert_int_equal(o.bench_n, 7);
+    expect_ok("", KIN_OPT_N, &o);
+    assert_int_equal(o.n_set, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_defaults),
         cmocka_unit_test(test_values),
         cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_study_options),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
