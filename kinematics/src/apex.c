@@ -3,9 +3,10 @@
 
 void tse_plate_frame(const tse_real pose[6], tse_plate *f)
 {
-    const tse_real cr = tse_cos(pose[TSE_ROLL]), sr = tse_sin(pose[TSE_ROLL]);
-    const tse_real cp = tse_cos(pose[TSE_PITCH]), sp = tse_sin(pose[TSE_PITCH]);
-    const tse_real cy = tse_cos(pose[TSE_YAW]), sy = tse_sin(pose[TSE_YAW]);
+    tse_real sr, cr, sp, cp, sy, cy;
+    tse_sincos(pose[TSE_ROLL], &sr, &cr);
+    tse_sincos(pose[TSE_PITCH], &sp, &cp);
+    tse_sincos(pose[TSE_YAW], &sy, &cy);
     tse_real(*R)[3] = f->R;
     R[0][0] = cy * cp;
     R[0][1] = cy * sp * sr - sy * cr;

@@ -1,5 +1,7 @@
 #include "tse/geometry.h"
 
+#include "kin_internal.h"
+
 tse_param_id tse_geometry_init(tse_geometry *g, const tse_params *p)
 {
     tse_param_id bad = tse_params_check(p);
@@ -19,6 +21,7 @@ tse_param_id tse_geometry_init(tse_geometry *g, const tse_params *p)
     g->w_lo = TSE_R(2.0) * g->l0 * tse_cos(p->alpha_max);
     /* Bounded Newton steps keep a cold start from jumping sheets (kinematics.md, solver notes). */
     g->step_max = TSE_R(0.1) * p->L;
+    tse_newton_limits(g);
 
     /* Exact values at 0, 120 and 240 degrees keep the three scissors bit-for-bit symmetric. */
     const tse_real half_sqrt3 = TSE_R(0.86602540378443864676);

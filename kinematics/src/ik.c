@@ -1,6 +1,83 @@
 #include "kin_internal.h"
+#include "scissor_core.h"
 #include "tse/ik.h"
 #include "tse/jacobian.h"
+
+/* The Hadamard ratio of Fp = tse_constraint_rows(rot_scale = 1 / r_top) without forming Fp.
+ *
+ * Row (i, r) of Fp is (g, s Ax (rc_i x g)) with g = dF_r/dC_i, rc_i = C_i - (X, Y, Z), s = 1/r_top
+ * and Ax the matrix whose rows are the roll, pitch and yaw axes; so Fp = [G | P] diag(I, s Ax^T)
+ * with rows (g, rc_i x g) in [G | P], and det Fp = s^3 det(Ax) det[G | P].  A row (g, rc x g) is
+ * the line through the ball joint along g; [G | P] t = 0 for a twist t = (v, w) exactly when every
+ * ball joint's velocity v + w x rc_i is normal to both of its gradients, i.e. along
+ * n_i = g_{i,1} x g_{i,2}; a velocity field lambda_i n_i is rigid when
+ * (lambda_i n_i - lambda_j n_j) . e_ij = 0 for the three pairs, e_ij = C_i - C_j.  det[G | P] is
+ * linear in each n_i (alternating and bilinear in the two rows of a ball joint) and cubic in the
+ * positions, like the determinant of that 3x3 system, and the two are equal up to sign:
+ *
+ *     det[G | P] = -( (n_1.e_12)(n_2.e_23)(n_3.e_13) - (n_2.e_12)(n_1.e_13)(n_3.e_23) )
+ *
+ * (checked in exact rational arithmetic on random lines, and against the 6x6 elimination of
+ * tse_hadamard_ratio by the kinematics tests).  Dividing n_i by the norms of its two rows and
+ * scaling e_ij by s gives the ratio directly, with every factor of order one (no overflow or
+ * underflow of the raw product of norms).  A gradient may be scaled freely: the ratio does not
+ * depend on a row's length, so the gradients are taken at half the size of constraint_rows.
+ *
+ * With rho_i = s rc_i (a unit vector), a row's rotation part is (axis_k . (rho_i x g))_k =
+ * (g . (axis_k x rho_i))_k, and for these axes: roll (R e_x) x rho_i = R (e_x x e_r) =
+ * sin(beta_i) N; pitch (-sin yaw, cos yaw, 0) x rho_i = h_i below; yaw e_z gives
+ * rho_x g_y - rho_y g_x.  det(Ax) = R e_x . (cos yaw, sin yaw, 0) = cos(pitch); e_ij s =
+ * rho_i - rho_j.
+ *
+ * type2_normal gives n_i divided by its two rows' norms (0 for a zero row), from the slides of
+ * scissor i, while the solver's values are at hand; type2_ratio the ratio from the three. */
+static inline int type2_normal(const tse_geometry *g, const tse_pose_frame *f, int i, const tse_scissor_local *loc,
+                               tse_real s_a, tse_real s_b, tse_real w2, tse_real n[3])
+{
+    const tse_scissor_frame *sf = &g->sc[i];
+    const tse_real *rho = f->rho[i];
+    const tse_real sb = sf->er[1];
+    /* F1 = |AC|^2 - |BC|^2 and F2 = |AC|^2 - ..., halved gradients as in constraint_rows: g1 =
+     * B - A (horizontal, |g1|^2 = w^2), g2 = C - A. */
+    const tse_real aa[2] = {s_a * sf->a[0], s_a * sf->a[1]};
+    const tse_real g1[2] = {s_b * sf->b[0] - aa[0], s_b * sf->b[1] - aa[1]};
+    const tse_real g2[3] = {loc->d[0] - aa[0], loc->d[1] - aa[1], loc->d[2]};
+    const tse_real h[3] = {f->cy * rho[2], f->sy * rho[2], -(f->sy * rho[1] + f->cy * rho[0])};
+    const tse_real r1 = sb * (g1[0] * f->N[0] + g1[1] * f->N[1]);
+    const tse_real p1 = g1[0] * h[0] + g1[1] * h[1];
+    const tse_real y1 = rho[0] * g1[1] - rho[1] * g1[0];
+    const tse_real r2 = sb * (g2[0] * f->N[0] + g2[1] * f->N[1] + g2[2] * f->N[2]);
+    const tse_real p2 = g2[0] * h[0] + g2[1] * h[1] + g2[2] * h[2];
+    const tse_real y2 = rho[0] * g2[1] - rho[1] * g2[0];
+    const tse_real nn1 = w2 + (r1 * r1 + p1 * p1 + y1 * y1);
+    const tse_real nn2 = (g2[0] * g2[0] + g2[1] * g2[1] + g2[2] * g2[2]) + (r2 * r2 + p2 * p2 + y2 * y2);
+    const tse_real norms = tse_sqrt(nn1) * tse_sqrt(nn2);
+    /* A zero row makes Fp singular (tse_hadamard_ratio's convention). */
+    if (!(norms > TSE_R(0.0)))
+        return 0;
+    const tse_real k = TSE_R(1.0) / norms;
+    const tse_real kz = k * g2[2];
+    n[0] = kz * g1[1];
+    n[1] = -(kz * g1[0]);
+    n[2] = k * (g1[0] * g2[1] - g1[1] * g2[0]);
+    return 1;
+}
+
+/* The ratio from the three scaled normals of type2_normal. */
+static inline tse_real type2_ratio(const tse_pose_frame *f, const tse_real n[3][3])
+{
+    tse_real e12[3], e13[3], e23[3];
+    for (int k = 0; k < 3; ++k) {
+        e12[k] = f->rho[0][k] - f->rho[1][k];
+        e13[k] = f->rho[0][k] - f->rho[2][k];
+        e23[k] = f->rho[1][k] - f->rho[2][k];
+    }
+#define DOT3(x, y) ((x)[0] * (y)[0] + (x)[1] * (y)[1] + (x)[2] * (y)[2])
+    const tse_real det_k = DOT3(n[0], e12) * DOT3(n[1], e23) * DOT3(n[2], e13) -
+                           DOT3(n[1], e12) * DOT3(n[0], e13) * DOT3(n[2], e23);
+#undef DOT3
+    return tse_fabs(det_k * f->cp);
+}
 
 /* The per-scissor checks of kinematics.md, in its order, on a branch solution. */
 static tse_status check_scissor(const tse_geometry *g, const tse_real C[3], const tse_scissor_solution *s)
@@ -34,6 +111,23 @@ static int all_finite(const tse_real *x, int n)
     return z == TSE_R(0.0);
 }
 
+/* Fills out for a non-finite pose or seed, which reaches every scissor: the first failing one is
+ * scissor 1. */
+static tse_status invalid(tse_ik_result *out)
+{
+    for (int k = 0; k < 6; ++k)
+        out->q[k] = (tse_real)NAN;
+    for (int i = 0; i < 3; ++i) {
+        out->mu[i] = (tse_real)NAN;
+        for (int k = 0; k < 3; ++k)
+            out->C[i][k] = (tse_real)NAN;
+    }
+    out->nu = (tse_real)NAN;
+    out->iterations = 0;
+    out->fallbacks = 0;
+    return reject(out, TSE_INVALID, 1);
+}
+
 tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real seed_q[6],
                   tse_ik_result *out)
 {
@@ -43,41 +137,54 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
     out->iterations = 0;
     out->fallbacks = 0;
 
-    /* A non-finite pose or seed reaches every scissor: the first failing one is scissor 1. */
-    if (!all_finite(pose, 6) || (seed_q != NULL && !all_finite(seed_q, 6))) {
-        for (int k = 0; k < 6; ++k)
-            out->q[k] = (tse_real)NAN;
-        for (int i = 0; i < 3; ++i) {
-            out->mu[i] = (tse_real)NAN;
-            for (int k = 0; k < 3; ++k)
-                out->C[i][k] = (tse_real)NAN;
-        }
-        return reject(out, TSE_INVALID, 1);
-    }
-
-    /* A finite pose gives finite ball joints (|r_top R e| <= r_top), so the solver's own checks
-     * of its input are skipped. */
-    tse_plate frame;
-    tse_plate_frame(pose, &frame);
-    tse_apex_from_frame(g, pose, &frame, out->C);
+    /* A non-finite pose or seed is looked for only once a scissor's Newton from its seed fails,
+     * which it always makes it do: a NaN or an infinity in the pose reaches every ball joint (the
+     * sine and cosine of an infinity are NaN), and in either the evaluation at the seed gives a
+     * non-finite step, which ends Newton at once (scissor_newton).  A finite pose gives finite
+     * ball joints (|r_top R e| <= r_top). */
+    tse_pose_frame frame;
+    tse_pose_frame_of(pose, &frame);
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k)
+            out->C[i][k] = pose[k] + g->r_top * frame.rho[i][k];
 
     /* All three are solved even after a failure, so that a rejection still shows every slide. */
     tse_status first = TSE_OK;
-    int first_scissor = 0;
-    tse_scissor_local loc[3];
+    int first_scissor = 0, inputs_checked = 0;
+    tse_real n[3][3];
+    int rows_nonzero = 1;
     for (int i = 0; i < 3; ++i) {
         tse_scissor_solution sol;
+        tse_scissor_local loc;
         const tse_real seed_a = seed_q ? seed_q[2 * i] : g->home_s;
         const tse_real seed_b = seed_q ? seed_q[2 * i + 1] : g->home_s;
-        tse_scissor_localize(g, i, out->C[i], &loc[i]);
-        tse_status st = tse_scissor_solve_local(g, &loc[i], seed_a, seed_b, &sol);
+        tse_real a = seed_a, b = seed_b;
+        int iterations;
+        scissor_localize_inline(&g->sc[i], out->C[i], &loc);
+        tse_status st = TSE_OK;
+        if (!scissor_solve_fast(g, &loc, &a, &b, &iterations, &sol)) {
+            if (!inputs_checked) {
+                if (!all_finite(pose, 6) || (seed_q != NULL && !all_finite(seed_q, 6)))
+                    return invalid(out);
+                inputs_checked = 1;
+            }
+            st = tse_scissor_fallback(g, &loc, seed_a, seed_b, a, b, iterations, &sol);
+        }
         out->iterations += sol.iterations;
         out->fallbacks += sol.fallback;
         if (st == TSE_OK) {
             out->q[2 * i] = sol.s_a;
             out->q[2 * i + 1] = sol.s_b;
             out->mu[i] = sol.mu;
-            st = check_scissor(g, out->C[i], &sol);
+            if (sol.fallback)
+                st = check_scissor(g, out->C[i], &sol);
+            else if (!(out->C[i][2] > TSE_R(0.0)))
+                st = TSE_BELOW;
+            /* Without the fallback the solution is inside the stroke and the stops already. */
+            else if (!(sol.mu >= g->p.mu_min))
+                st = TSE_SINGULAR;
+            if (st == TSE_OK)
+                rows_nonzero &= type2_normal(g, &frame, i, &loc, sol.s_a, sol.s_b, sol.w * sol.w, n[i]);
         } else {
             out->q[2 * i] = (tse_real)NAN;
             out->q[2 * i + 1] = (tse_real)NAN;
@@ -93,10 +200,12 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
 
     /* Type 2: rotation columns in metres of ball-joint travel, so that they weigh like the
      * translation columns whatever the plate size. */
-    out->nu = tse_type2_margin(g, pose, &frame, out->C, loc, out->q);
+    out->nu = rows_nonzero ? type2_ratio(&frame, (const tse_real(*)[3])n) : TSE_R(0.0);
     if (!(out->nu >= g->p.nu_min)) {
+        tse_plate plate;
         tse_real Fp[6][6];
-        tse_constraint_rows(g, pose, &frame, out->C, out->q, g->inv_r_top, Fp, NULL);
+        tse_plate_frame(pose, &plate);
+        tse_constraint_rows(g, pose, &plate, out->C, out->q, g->inv_r_top, Fp, NULL);
         const int row = tse_weakest_row6(Fp);
         return reject(out, TSE_DEGENERATE, row < 0 ? 1 : row / 2 + 1);
     }

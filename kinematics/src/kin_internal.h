@@ -3,6 +3,7 @@
 #ifndef TSE_KIN_INTERNAL_H
 #define TSE_KIN_INTERNAL_H
 
+#include "trig.h"
 #include "tse/geometry.h"
 #include "tse/ik.h"
 
@@ -24,7 +25,11 @@ typedef struct {
 #define tse_weakest_row6 TSE_NS(tse_weakest_row6)
 #define tse_constraint_rows TSE_NS(tse_constraint_rows)
 #define tse_scissor_solve_local TSE_NS(tse_scissor_solve_local)
-#define tse_type2_margin TSE_NS(tse_type2_margin)
+#define tse_scissor_fallback TSE_NS(tse_scissor_fallback)
+#define tse_newton_limits TSE_NS(tse_newton_limits)
+
+/* Newton iterations a solve from a seed may take before the quartic decides. */
+#define TSE_NEWTON_MAX_ITER 40
 
 void tse_scissor_localize(const tse_geometry *g, int i, const tse_real C[3], tse_scissor_local *loc);
 
@@ -44,6 +49,43 @@ typedef struct {
 } tse_plate;
 
 void tse_plate_frame(const tse_real pose[6], tse_plate *f);
+
+/* What the inverse and forward kinematics need of the plate's orientation, from one set of
+ * sines and cosines (tse_plate is the general form, for the Jacobian and the cold paths). */
+typedef struct {
+    tse_real rho[3][3];  /* R e_r_i: unit vector from the plate's centre to ball joint i */
+    tse_real N[3];       /* R e_z: the plate's normal */
+    tse_real sy, cy, sp, cp; /* sines and cosines of yaw and pitch */
+} tse_pose_frame;
+
+/* R = Rz(yaw) Ry(pitch) Rx(roll) as tse_plate_frame, but only the columns the solver uses, and
+ * the three directions rho_i = R e_r_i written out for the azimuths 0, 120 and 240 degrees
+ * (kinematics.md, "Frames"): with geometry.c's e_r = (1, 0), (-1/2, +-sqrt(3)/2) these are the
+ * same products and sums as R e_r, bit for bit, without the multiplications by 1 and 0. */
+static inline void tse_pose_frame_of(const tse_real pose[6], tse_pose_frame *f)
+{
+    tse_real sr, cr, sp, cp, sy, cy;
+    tse_sincos(pose[TSE_ROLL], &sr, &cr);
+    tse_sincos(pose[TSE_PITCH], &sp, &cp);
+    tse_sincos(pose[TSE_YAW], &sy, &cy);
+    const tse_real cysp = cy * sp, sysp = sy * sp;
+    const tse_real col0[3] = {cy * cp, sy * cp, -sp};
+    const tse_real col1[3] = {cysp * sr - sy * cr, sysp * sr + cy * cr, cp * sr};
+    f->N[0] = cysp * cr + sy * sr;
+    f->N[1] = sysp * cr - cy * sr;
+    f->N[2] = cp * cr;
+    for (int k = 0; k < 3; ++k) {
+        const tse_real m = TSE_R(-0.5) * col0[k], t = TSE_R(0.86602540378443864676) * col1[k];
+        f->rho[0][k] = col0[k];
+        f->rho[1][k] = m + t;
+        f->rho[2][k] = m - t;
+    }
+    f->sy = sy;
+    f->cy = cy;
+    f->sp = sp;
+    f->cp = cp;
+}
+
 void tse_apex_from_frame(const tse_geometry *g, const tse_real pose[6], const tse_plate *f,
                          tse_real C[3][3]);
 
@@ -69,10 +111,14 @@ void tse_constraint_rows(const tse_geometry *g, const tse_real pose[6], const ts
 tse_status tse_scissor_solve_local(const tse_geometry *g, const tse_scissor_local *loc,
                                    tse_real seed_a, tse_real seed_b, tse_scissor_solution *out);
 
-/* The type-2 margin of tse_ik: tse_hadamard_ratio of the rows tse_constraint_rows gives with
- * rot_scale = 1 / r_top, from a closed form instead of a 6x6 elimination (see jacobian.c).  loc
- * and q are the localized ball joints and the slides of the solution. */
-tse_real tse_type2_margin(const tse_geometry *g, const tse_real pose[6], const tse_plate *f,
-                          const tse_real C[3][3], const tse_scissor_local loc[3], const tse_real q[6]);
+/* Fills the newton_* constants and L2 of g from g->p.L and g->step_max (scissor_core.h). */
+void tse_newton_limits(tse_geometry *g);
+
+/* The rest of tse_scissor_solve_local once Newton from the seed did not give a physical solution
+ * inside the limits: the quartic's enumeration.  (s_a, s_b) is where Newton got to (the seed if it
+ * failed), described in out when nothing is found; iterations counts Newton's so far. */
+tse_status tse_scissor_fallback(const tse_geometry *g, const tse_scissor_local *loc, tse_real seed_a,
+                                tse_real seed_b, tse_real s_a, tse_real s_b, int iterations,
+                                tse_scissor_solution *out);
 
 #endif

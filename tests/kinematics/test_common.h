@@ -35,7 +35,7 @@
 #define IS_FLOAT 0
 #define TOL_Q 1e-9
 #define TOL_Q2 2e-9
-#define TOL_WORKED 1e-10 /* the solver stops at a predicted 2.6e-12 m (kinematics/src/scissor.c): the
+#define TOL_WORKED 1e-10 /* the solver stops at an estimated 2.6e-12 m (kinematics/src/scissor_core.h): the
                           * worked values' last digits are not its promise, 1e-9 m is; 1e-10 still
                           * catches any lost nanometre */
 #endif

@@ -23,6 +23,10 @@ typedef struct {
     tse_real c;           /* cos(2 eta) */
     tse_real w_lo, w_hi;  /* base width at alpha_max and alpha_min: w_lo <= w <= w_hi is in the stops */
     tse_real step_max;    /* Newton step bound [m] */
+    /* Squared step lengths [m^2] of the Newton solvers (kinematics/src/scissor_core.h and fk.c say
+     * what each decides), and L^2: derived once here rather than on every solve. */
+    tse_real newton_acc2, newton_regime2, newton_max2;
+    tse_real L2;
     tse_real home_pose[6];/* symmetric home: X = Y = 0, zero orientation, mid-range height */
     tse_real home_s;      /* every slide at home */
     tse_scissor_frame sc[3];
