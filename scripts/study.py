@@ -358,30 +358,29 @@ class Study:
         """Where the plate's centre is on the axis when a scissor is at a stop.  The paper's 0.324 and
         1.619 m are the scissor's height L sin(alpha) at the stops; the ball joint is at that
         distance from the midpoint of A and B but not above it (h^2 = b^2 + z^2, b the horizontal
-        offset), so the plate is a little lower.  Found by bisection on tse-kin ik's verdict."""
-        def status(z):
-            return self.kin.run(["ik", "--params", self.design_file], f"0,0,{z!r},0,0,0\n").split(",")[0]
-
-        def edge(lo, hi):  # status(lo) != status(hi): the boundary between them
-            a = status(lo)
-            for _ in range(40):
-                mid = (lo + hi) / 2
-                if status(mid) == a:
-                    lo = mid
-                else:
-                    hi = mid
-            return (lo + hi) / 2
+        offset), so the plate is a little lower.  Found from tse-kin ik's verdicts on a fine row of
+        heights, then on a finer one across each edge (two runs, a resolution of ~1e-7 m)."""
         L = self.values["L"]
-        z = [r["z"] for r in self.profile]
-        oks = [zz for zz in z if status(zz) == "ok"]
-        if not oks:
-            self.note("on the axis no height is reachable")
+        n = 2000
+
+        def verdicts(lo, hi):
+            zs = [lo + (hi - lo) * i / (n - 1) for i in range(n)]
+            out = self.kin.run(["ik", "--params", self.design_file], "".join(f"0,0,{z!r},0,0,0\n" for z in zs))
+            return zs, [line.split(",")[0] == "ok" for line in out.splitlines()]
+
+        zs, ok = verdicts(0.0, L)
+        edges = [i for i in range(1, n) if ok[i] != ok[i - 1]]
+        if len(edges) != 2:
+            self.note(f"on the axis the reachable heights are not one interval ({len(edges)} edges)")
             return
-        lo = edge(z[0] * 0.5, oks[0]) if status(z[0] * 0.5) != "ok" else float("nan")
-        hi = edge(oks[-1], min(z[-1] * 1.05, L)) if status(min(z[-1] * 1.05, L)) != "ok" else float("nan")
-        self.stops = (lo, hi)
-        self.note(f"on the axis the plate reaches Z = {lo:.4f} .. {hi:.4f} m (tse-kin ik); the stops' scissor "
-                  f"heights L sin(alpha) are {z[0]:.4f} and {z[-1]:.4f} m")
+        found = []
+        for i in edges:
+            fz, fok = verdicts(zs[i - 1], zs[i])
+            j = next(k for k in range(1, n) if fok[k] != fok[k - 1])
+            found.append((fz[j - 1] + fz[j]) / 2)
+        z = [r["z"] for r in self.profile]
+        self.note(f"on the axis the plate reaches Z = {found[0]:.4f} .. {found[1]:.4f} m (tse-kin ik); the stops' "
+                  f"scissor heights L sin(alpha) are {z[0]:.4f} and {z[-1]:.4f} m")
 
     # ------------------------------------------------------------------ the numbers of the report
     def numbers(self):
