@@ -21,6 +21,13 @@ tse_param_id tse_geometry_init(tse_geometry *g, const tse_params *p)
     g->w_lo = TSE_R(2.0) * g->l0 * tse_cos(p->alpha_max);
     /* Bounded Newton steps keep a cold start from jumping sheets (kinematics.md, solver notes). */
     g->step_max = TSE_R(0.1) * p->L;
+    /* A solution has |CA| = |CB| >= w / 2, so F2 gives w <= 2 l0 and |CA| <= L; and
+     * w^2 - (1 + c)/2 (s_A + s_B)^2 = (1 - c)/2 (s_A - s_B)^2 >= 0, so positive slides are each at
+     * most 2 l0 sqrt(2 / (1 + c)).  A ball joint farther than L plus that from O has no physical
+     * solution: said at once, before the equations' terms could overflow into a false root. */
+    const tse_real reach = (p->L + TSE_R(2.0) * g->l0 * tse_sqrt(TSE_R(2.0) / (TSE_R(1.0) + g->c))) *
+                           (TSE_R(1.0) + TSE_R(16.0) * TSE_REAL_EPS);
+    g->reach2 = reach * reach;
     tse_newton_limits(g);
 
     /* Exact values at 0, 120 and 240 degrees keep the three scissors bit-for-bit symmetric. */

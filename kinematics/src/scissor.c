@@ -103,7 +103,8 @@ tse_status tse_scissor_fallback(const tse_geometry *g, const tse_scissor_local *
     scissor_consts k;
     scissor_consts_of(g, loc, &k);
     tse_scissor_solution best;
-    const int found = enumerate(g, &k, loc, seed_a, seed_b, &best, &iterations);
+    /* Beyond the reach (geometry.h) the quartic's terms can overflow into a false root. */
+    const int found = loc->rho2 <= g->reach2 && enumerate(g, &k, loc, seed_a, seed_b, &best, &iterations);
     if (found) {
         *out = best;
     } else {

@@ -214,6 +214,8 @@ static inline int scissor_solve_fast(const tse_geometry *g, const tse_scissor_lo
     scissor_consts k;
     scissor_consts_of(g, loc, &k);
     *iterations = 0;
+    if (!(loc->rho2 <= g->reach2))
+        return 0; /* no physical solution at all: tse_scissor_fallback says so */
     if (scissor_newton(g, &k, loc->rho2, s_a, s_b, TSE_NEWTON_MAX_ITER, iterations, out) == 1 &&
         scissor_within_limits(g, out)) {
         out->iterations = *iterations;

@@ -27,6 +27,7 @@ typedef struct {
      * what each decides), and L^2: derived once here rather than on every solve. */
     tse_real newton_acc2, newton_regime2, newton_max2;
     tse_real L2;
+    tse_real reach2;      /* |C - O|^2 beyond which a scissor has no physical solution [m^2] */
     tse_real home_pose[6];/* symmetric home: X = Y = 0, zero orientation, mid-range height */
     tse_real home_s;      /* every slide at home */
     tse_scissor_frame sc[3];
