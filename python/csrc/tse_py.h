@@ -1,0 +1,90 @@
+/* The C side of tse.kin (python/tse/kin.py): what libtse_kin.so exports, nothing else.
+ *
+ * Promise: every entry point works on the caller's arrays (C order, doubles in, doubles and ints
+ * out), keeps no state between calls and allocates nothing.  A design is passed as
+ * v[TSE_PY_NPARAMS], the parameters in the order of tse_param_id (v[0] = L, v[1] = k1, ...,
+ * v[10] = nu_min) in SI units and radians; each batch call validates it with the build's own
+ * tse_geometry_init (after rounding to that build's precision, as tse-kin does) and returns the
+ * first parameter it rejects (a tse_param_id), or TSE_PARAM_OK (0) when the set is valid and the
+ * arrays are filled.  Inputs are rounded to the build's precision on the way in and results
+ * widened on the way out, exactly as tse-kin's bridge (host_tools/tse_kin/kin_ops.c) does, so a
+ * row's answer is tse-kin's answer to the same row, bit for bit.
+ *
+ * The batch entry points exist once per precision, suffixed _d (double) and _f (float). */
+#ifndef TSE_PY_H
+#define TSE_PY_H
+
+#include <stddef.h>
+
+#include "tse/params.h"
+
+#define TSE_PY_API __attribute__((visibility("default")))
+#define TSE_PY_NPARAMS (TSE_PARAM_COUNT - 1)
+
+/* Names and tables, precision independent (tse_py_params.c). */
+TSE_PY_API int tse_py_status_count(void);
+TSE_PY_API const char *tse_py_status_name(int status);
+TSE_PY_API int tse_py_param_count(void);
+TSE_PY_API const char *tse_py_param_name(int id);
+/* The spellings a parameter file accepts (tse-kin's table): key i of n, its parameter id, whether
+ * its value is in degrees, and its rule (kinematics.md, "Valid parameter sets") in its unit.
+ * NULL past the end. */
+TSE_PY_API const char *tse_py_param_key(int i, int *id, int *degrees, const char **rule);
+/* The prototype's values (tse_params_default, double build). */
+TSE_PY_API void tse_py_params_default(double v[TSE_PY_NPARAMS]);
+/* tse-kin's parameter file, parsed and validated as tse-kin parses it (params_file.h): 0 with the
+ * values in v, -1 (not a valid file) or -2 (unreadable) with tse-kin's message in err. */
+TSE_PY_API int tse_py_params_load(const char *path, double v[TSE_PY_NPARAMS], char *err, size_t errlen);
+
+#if defined(TSE_REAL_FLOAT) && TSE_REAL_FLOAT
+#define TSE_PY(name) name##_f
+#else
+#define TSE_PY(name) name##_d
+#endif
+
+#define tse_py_check TSE_PY(tse_py_check)
+#define tse_py_ik TSE_PY(tse_py_ik)
+#define tse_py_fk TSE_PY(tse_py_fk)
+#define tse_py_jacobian TSE_PY(tse_py_jacobian)
+#define tse_py_haf TSE_PY(tse_py_haf)
+#define tse_py_sigma_z TSE_PY(tse_py_sigma_z)
+#define tse_py_workspace TSE_PY(tse_py_workspace)
+#define tse_py_workspace_points TSE_PY(tse_py_workspace_points)
+
+#ifdef TSE_PY_BATCH
+/* The set as this build sees it: TSE_PARAM_OK or the first parameter it rejects. */
+TSE_PY_API int tse_py_check(const double v[TSE_PY_NPARAMS]);
+
+/* Inverse kinematics of poses[n][6].  seed: NULL (home), one seed q (seed_stride 0) or one per row
+ * (seed_stride 6).  warm: a row after one that came back ok is seeded with that row's slides (in
+ * the build's precision), as a controller stepping along a path; the others with their seed.
+ * Out: status[n], scissor[n] (0 when ok), q[n][6] (the library's slides, NaN where none). */
+TSE_PY_API int tse_py_ik(const double v[TSE_PY_NPARAMS], long n, const double *poses, const double *seed,
+                         long seed_stride, int warm, int *status, int *scissor, double *q);
+
+/* Forward kinematics of q[n][6], seeds as tse_py_ik's (poses; warm: the last ok pose).  Out:
+ * status[n], scissor[n], pose[n][6] (NaN unless ok, as tse-kin prints it). */
+TSE_PY_API int tse_py_fk(const double v[TSE_PY_NPARAMS], long n, const double *q, const double *seed,
+                         long seed_stride, int warm, int *status, int *scissor, double *pose);
+
+/* tse-kin jacobian: the slides from home, then dq/dp (J[n][6][6], rows s_a1..s_b3, columns
+ * x..yaw) and the singular values of dp/dq, descending (sv[n][6]); NaN unless ok. */
+TSE_PY_API int tse_py_jacobian(const double v[TSE_PY_NPARAMS], long n, const double *poses, int *status,
+                               int *scissor, double *J, double *sv);
+
+/* HAF and sigma_z at heights z[n] (NaN unless ok). */
+TSE_PY_API int tse_py_haf(const double v[TSE_PY_NPARAMS], long n, const double *z, int *status, double *haf);
+TSE_PY_API int tse_py_sigma_z(const double v[TSE_PY_NPARAMS], long n, const double *z, int *status,
+                              double *sigma);
+
+/* The workspace count of the paper's grid (tse_workspace_count: tse_workspace's numbers). */
+TSE_PY_API int tse_py_workspace(const double v[TSE_PY_NPARAMS], int n_r, int n_phi, int n_z,
+                                const double orientation[3], int *status, long *reachable, long *total);
+
+/* Every point of that grid: pose[n_r * n_phi * n_z][6] in the order (i, j, k), k fastest, and its
+ * status and scissor from tse_ik without a seed (what the count counts). */
+TSE_PY_API int tse_py_workspace_points(const double v[TSE_PY_NPARAMS], int n_r, int n_phi, int n_z,
+                                       const double orientation[3], double *pose, int *status, int *scissor);
+#endif
+
+#endif
