@@ -168,7 +168,11 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
                     return invalid(out);
                 inputs_checked = 1;
             }
-            st = tse_scissor_fallback(g, &loc, seed_a, seed_b, a, b, iterations, &sol);
+            /* Its own struct: sol, whose address then never leaves this function, can live in
+             * registers on the common path. */
+            tse_scissor_solution fb;
+            st = tse_scissor_fallback(g, &loc, seed_a, seed_b, a, b, iterations, &fb);
+            sol = fb;
         }
         out->iterations += sol.iterations;
         out->fallbacks += sol.fallback;

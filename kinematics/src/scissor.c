@@ -76,7 +76,7 @@ static int enumerate(const tse_geometry *g, const scissor_consts *k, const tse_s
         tse_real b = (m * m + TSE_R(2.0) * v * m - delta) / (TSE_R(2.0) * m);
         /* The root came from a squared-up polynomial: polish it on the equations themselves. */
         tse_scissor_solution cand;
-        int valid = scissor_newton(g, k, loc->rho2, &a, &b, POLISH_MAX_ITER, iterations, &cand);
+        int valid = scissor_newton(g, k, loc->rho2, &a, &b, POLISH_MAX_ITER, 0, iterations, &cand);
         if (valid < 0)
             valid = scissor_describe_at(g, k, loc->rho2, a, b, &cand);
         /* A polish that wandered off a spurious root leaves a residual far above rounding. */
