@@ -95,6 +95,7 @@ typedef struct {
 typedef struct {
     tse_real r[2];    /* box half-widths of s_A, s_B */
     tse_real d[3];    /* C - O at the centre */
+    tse_real rho;     /* the ball joint's travel over the piece (joint_motion's) */
 } scissor_box;
 
 /* One scissor over the piece: encloses its solution (returns 1), sets *proven when the box passes
@@ -106,6 +107,7 @@ static int enclose_scissor(const tse_geometry *g, int i, const tse_real C[3], co
     const tse_scissor_frame *f = &g->sc[i];
     const tse_real gg = g->g, c = g->c, L = g->p.L, rho = jm->rho;
     tse_real *d = box->d;
+    box->rho = rho;
     d[0] = C[0] - f->o[0];
     d[1] = C[1] - f->o[1];
     d[2] = C[2];
@@ -339,10 +341,9 @@ int tse_ik_enclose(const tse_geometry *g, const tse_piece *piece, const tse_real
         const tse_real g1[3] = {sb * f->b[0] - sa * f->a[0], sb * f->b[1] - sa * f->a[1], TSE_R(0.0)};
         const tse_real g2[3] = {d[0] - sa * f->a[0], d[1] - sa * f->a[1], d[2]};
         const tse_real ra = boxes[i].r[0], rb = boxes[i].r[1];
-        const tse_real rho = (n_lin + n_om * norm3(rcs[i])) * h * widen + piece->pad;
         const tse_real d_rc = norm3(rcs[i]) * phi;
         loss += row_change(axes, d_axis, s, rcs[i], d_rc, g1, ra + rb + TSE_R(2.0) * IK_ACCURACY);
-        loss += row_change(axes, d_axis, s, rcs[i], d_rc, g2, rho + ra + IK_ACCURACY);
+        loss += row_change(axes, d_axis, s, rcs[i], d_rc, g2, boxes[i].rho + ra + IK_ACCURACY);
     }
     const tse_real nu_lo = centre->nu * (TSE_R(1.0) - TSE_R(64.0) * TSE_REAL_EPS) - loss * widen -
                            TSE_R(64.0) * TSE_REAL_EPS;
