@@ -9,28 +9,10 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "bench_clock.h"
 #include "fw/move.h"
 #include "fw/params.h"
 #include "fw/stepgen.h"
-
-static double now_ns(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e9 + (double)t.tv_nsec;
-}
-
-static int cmp(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp);
-    return v[n / 2];
-}
 
 int main(void)
 {
@@ -54,15 +36,15 @@ int main(void)
     double plan[REPEATS], seg[REPEATS];
     volatile double sink = 0;
     for (int rep = 0; rep < REPEATS; ++rep) {
-        double t0 = now_ns();
+        double t0 = bench_now_ns();
         if (fw_move_plan(&mv, &g, &lim, from, to, FW_MOVE_DURATION, 1.0, q0, &res) != 0)
             return 1;
-        plan[rep] = (now_ns() - t0) / mv.segments;
+        plan[rep] = (bench_now_ns() - t0) / mv.segments;
 
         tse_real q[6];
         for (int k = 0; k < 6; ++k)
             q[k] = q0[k];
-        t0 = now_ns();
+        t0 = bench_now_ns();
         for (uint32_t s = 1; s <= mv.segments; ++s) {
             tse_real pose[6];
             fw_move_pose(&mv, fw_move_segment_time(&mv, &lim, s), pose);
@@ -74,12 +56,12 @@ int main(void)
             }
             sink += steps[0];
         }
-        seg[rep] = (now_ns() - t0) / mv.segments;
+        seg[rep] = (bench_now_ns() - t0) / mv.segments;
     }
     printf("move of %u segments (%.3f s after stretching x%.2f)\n", mv.segments, (double)mv.prof.T, (double)mv.stretch);
-    printf("control segment (pose + warm IK + steps): median %.1f ns\n", median(seg, REPEATS));
-    printf("planning (whole-path validation), per segment: median %.1f ns\n", median(plan, REPEATS));
-    printf("bench,segment_ns,%.1f\nbench,plan_per_segment_ns,%.1f\n", median(seg, REPEATS), median(plan, REPEATS));
+    printf("control segment (pose + warm IK + steps): median %.1f ns\n", bench_median(seg, REPEATS));
+    printf("planning (whole-path validation), per segment: median %.1f ns\n", bench_median(plan, REPEATS));
+    printf("bench,segment_ns,%.1f\nbench,plan_per_segment_ns,%.1f\n", bench_median(seg, REPEATS), bench_median(plan, REPEATS));
 
     /* The step interrupt: 200 kHz over 1 kHz segments; every axis at its capacity, or at a
      * typical 20 kHz. */
@@ -93,7 +75,7 @@ int main(void)
             int32_t target[6] = {0};
             const int32_t per = full ? 99 : 20;
             long ticks = 0;
-            const double t0 = now_ns();
+            const double t0 = bench_now_ns();
             for (int s = 0; s < 2000; ++s) {
                 for (int k = 0; k < 6; ++k)
                     target[k] += (k % 2 ? -per : per);
@@ -101,11 +83,11 @@ int main(void)
                 for (int t = 0; t < 200; ++t, ++ticks)
                     sink += stepgen_tick(&sg).step_mask;
             }
-            tick[rep] = (now_ns() - t0) / (double)ticks;
+            tick[rep] = (bench_now_ns() - t0) / (double)ticks;
         }
         printf("step interrupt, 6 axes at %s: median %.2f ns per tick\n", full ? "99 kHz each" : "20 kHz each",
-               median(tick, REPEATS));
-        printf("bench,step_tick_%s_ns,%.2f\n", full ? "full" : "typical", median(tick, REPEATS));
+               bench_median(tick, REPEATS));
+        printf("bench,step_tick_%s_ns,%.2f\n", full ? "full" : "typical", bench_median(tick, REPEATS));
     }
     (void)sink;
     return 0;

@@ -40,6 +40,7 @@
 #include <gsl/gsl_multiroots.h>
 #include <gsl/gsl_vector.h>
 
+#include "bench_clock.h"
 #include "tse/geometry.h"
 #include "tse/ik.h"
 #include "tse/params.h"
@@ -196,25 +197,6 @@ static int on_sheet(const tse_geometry *g, const double pose[6], const double q[
 
 static volatile double bench_sink;
 
-static double now_ns(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e9 + (double)t.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 /* One pass of ours over the path; q (n x 6) receives the slides.  Warm: seeded with the last
  * accepted solution, starting from first_seed; cold: seed_q NULL (home).  Returns ns per pose. */
 static double ours_pass(const tse_geometry *g, const double (*poses)[6], int n, const double *first_seed,
@@ -224,7 +206,7 @@ static double ours_pass(const tse_geometry *g, const double (*poses)[6], int n, 
     if (first_seed)
         memcpy(seed, first_seed, sizeof seed);
     tse_ik_result r;
-    const double t0 = now_ns();
+    const double t0 = bench_now_ns();
     for (int k = 0; k < n; ++k) {
         const tse_status st = tse_ik(g, poses[k], first_seed ? seed : NULL, &r);
         if (first_seed && st == TSE_OK)
@@ -233,7 +215,7 @@ static double ours_pass(const tse_geometry *g, const double (*poses)[6], int n, 
         ok[k] = st == TSE_OK;
         acc += r.q[0];
     }
-    const double t1 = now_ns();
+    const double t1 = bench_now_ns();
     bench_sink = acc;
     return (t1 - t0) / n;
 }
@@ -249,14 +231,14 @@ static double peer_pass(peer *p, const double (*poses)[6], int n, const double *
     else
         for (int k = 0; k < 6; ++k)
             seed[k] = p->g->home_s;
-    const double t0 = now_ns();
+    const double t0 = bench_now_ns();
     for (int k = 0; k < n; ++k) {
         ok[k] = peer_solve(p, poses[k], seed, q[k]);
         if (first_seed && ok[k])
             memcpy(seed, q[k], sizeof seed);
         acc += q[k][0];
     }
-    const double t1 = now_ns();
+    const double t1 = bench_now_ns();
     bench_sink = acc;
     return (t1 - t0) / n;
 }
@@ -388,10 +370,10 @@ int main(int argc, char **argv)
            "# within a round.  Ours also checks the stops, stroke, mu and nu; GSL's side only solves.\n",
            PEER_EPSABS, n, rounds);
     printf("poses,%d\nrounds,%d\n", n, rounds);
-    printf("ours_warm_ns,%.1f\ngsl_warm_ns,%.1f\nratio_warm,%.2f\n", median(ow, rounds), median(pw, rounds),
-           median(rw, rounds));
-    printf("ours_cold_ns,%.1f\ngsl_cold_ns,%.1f\nratio_cold,%.2f\n", median(oc, rounds), median(pc, rounds),
-           median(rc, rounds));
+    printf("ours_warm_ns,%.1f\ngsl_warm_ns,%.1f\nratio_warm,%.2f\n", bench_median(ow, rounds), bench_median(pw, rounds),
+           bench_median(rw, rounds));
+    printf("ours_cold_ns,%.1f\ngsl_cold_ns,%.1f\nratio_cold,%.2f\n", bench_median(oc, rounds), bench_median(pc, rounds),
+           bench_median(rc, rounds));
     printf("# Newton iterations per 6-DOF pose (three scissors), mean\n");
     printf("ours_iter_warm,%.2f\ngsl_iter_warm,%.2f\nours_iter_cold,%.2f\ngsl_iter_cold,%.2f\n",
            (double)ours_it_w / n, peer_iter_warm, (double)ours_it_c / n, peer_iter_cold);

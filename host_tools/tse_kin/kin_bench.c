@@ -9,6 +9,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_clock.h"
 #include "kin_prec.h"
 #include "tse/fk.h"
 #include "tse/ik.h"
@@ -16,35 +17,16 @@
 /* Every batch stores a sum of its results here: the work has an observable effect. */
 static volatile double bench_sink;
 
-static double now_ns(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e9 + (double)t.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 static double time_cold(const tse_geometry *g, tse_real (*p)[6], int n)
 {
     tse_real acc = 0;
     tse_ik_result r;
-    const double t0 = now_ns();
+    const double t0 = bench_now_ns();
     for (int i = 0; i < n; ++i) {
         tse_ik(g, p[i], NULL, &r);
         acc += r.q[0];
     }
-    const double t1 = now_ns();
+    const double t1 = bench_now_ns();
     bench_sink = (double)acc;
     return (t1 - t0) / n;
 }
@@ -55,13 +37,13 @@ static double time_warm(const tse_geometry *g, tse_real (*p)[6], int n, const ts
     tse_real acc = 0, seed[6];
     memcpy(seed, first_seed, sizeof seed);
     tse_ik_result r;
-    const double t0 = now_ns();
+    const double t0 = bench_now_ns();
     for (int i = 0; i < n; ++i) {
         if (tse_ik(g, p[i], seed, &r) == TSE_OK)
             memcpy(seed, r.q, sizeof seed);
         acc += r.q[0];
     }
-    const double t1 = now_ns();
+    const double t1 = bench_now_ns();
     bench_sink = (double)acc;
     return (t1 - t0) / n;
 }
@@ -71,12 +53,12 @@ static double time_fk(const tse_geometry *g, tse_real (*p)[6], tse_real (*q)[6],
 {
     tse_real acc = 0;
     tse_fk_result f;
-    const double t0 = now_ns();
+    const double t0 = bench_now_ns();
     for (int i = 1; i < n; ++i) {
         tse_fk(g, q[i], p[i - 1], &f);
         acc += f.pose[0];
     }
-    const double t1 = now_ns();
+    const double t1 = bench_now_ns();
     bench_sink = (double)acc;
     return (t1 - t0) / (n - 1);
 }
@@ -145,9 +127,9 @@ int kin_bench_run(const kin_ctx *c, const double (*poses)[6], int n, int repeats
         t_warm[r] = time_warm(&c->g, p, n, first_seed);
         t_fk[r] = time_fk(&c->g, p, q, n);
     }
-    out->ik_cold_ns = median(t_cold, repeats);
-    out->ik_warm_ns = median(t_warm, repeats);
-    out->fk_ns = median(t_fk, repeats);
+    out->ik_cold_ns = bench_median(t_cold, repeats);
+    out->ik_warm_ns = bench_median(t_warm, repeats);
+    out->fk_ns = bench_median(t_fk, repeats);
     free(p);
     free(q);
     free(t);
