@@ -13,4 +13,7 @@ int gen_markdown(FILE *out);
 /* A DBC database for one controller, node 1..15 (docs/tse_node1.dbc is node 1). */
 int gen_dbc(FILE *out, unsigned node);
 
+/* python/tse/_protocol.py: the message, enumeration and parameter tables as Python data. */
+int gen_python(FILE *out);
+
 #endif

@@ -3,6 +3,7 @@
  *   protogen dbc [NODE]      a DBC database for one controller (default node 1)
  *   protogen frames [NODE]   sample frames from the codec with their field values (for the test
  *                            that decodes them with a third-party DBC reader)
+ *   protogen python          python/tse/_protocol.py (the tables for the client tse.can)
  * The table (firmware/src/proto_table.c) is the single truth; the tests regenerate these outputs
  * and fail when the committed documents differ.  A table the documents cannot describe (see
  * table_lint.h) is reported and nothing is printed. */
@@ -68,14 +69,20 @@ static int markdown(FILE *out, unsigned node)
     return gen_markdown(out);
 }
 
+static int python(FILE *out, unsigned node)
+{
+    (void)node;
+    return gen_python(out);
+}
+
 int main(int argc, char **argv)
 {
     static const struct {
         const char *name;
         int (*gen)(FILE *, unsigned);
         int takes_node;
-    } outputs[] = {{"markdown", markdown, 0}, {"dbc", gen_dbc, 1}, {"frames", frames, 1}};
-    const char *const usage = "usage: protogen markdown | dbc [NODE] | frames [NODE]   (NODE 1..15)\n";
+    } outputs[] = {{"markdown", markdown, 0}, {"dbc", gen_dbc, 1}, {"frames", frames, 1}, {"python", python, 0}};
+    const char *const usage = "usage: protogen markdown | dbc [NODE] | frames [NODE] | python   (NODE 1..15)\n";
     int which = -1;
     for (int i = 0; argc >= 2 && i < (int)(sizeof outputs / sizeof outputs[0]); ++i)
         if (!strcmp(argv[1], outputs[i].name))

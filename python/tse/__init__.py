@@ -2,6 +2,11 @@
 
 tse.kin: the kinematics library (the controller's own C code, double and float builds) over numpy
 arrays, through ctypes and libtse_kin.so.  See tse/kin.py.
+tse.can: a controller on a CAN bus through python-can (enable, home, move, trajectories,
+telemetry, parameters), its frames packed from the protocol table protogen prints
+(tse/_protocol.py).  See tse/can.py.
+
+Neither is imported by `import tse`: tse.can needs no numpy, tse.kin no python-can.
 """
 
-__all__ = ["kin"]
+__all__ = ["kin", "can"]

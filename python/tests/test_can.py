@@ -1,0 +1,157 @@
+"""tse.can on the host, without a controller: its codec against the firmware's own (the frames
+protogen packs with proto_encode), its REJECT wording against tsectl's, and arguments refused
+before anything reaches the bus.  The client against tse-sim runs in the vcan harness
+(tests/vcan, python_can.sh)."""
+import math
+import os
+import subprocess
+from pathlib import Path
+
+import can as pycan
+import pytest
+
+from tse import _protocol as P
+from tse import can as tcan
+
+BUILD = Path(__file__).resolve().parents[2] / "build" / "host"
+
+
+def tool(env, default):
+    path = Path(os.environ.get(env) or BUILD / default)
+    if not path.exists():
+        pytest.fail(f"{path} not found: build the host preset, or set {env}")
+    return str(path)
+
+
+@pytest.fixture(scope="module")
+def sample_frames():
+    """protogen's sample frames: id, data, message and the values the C codec packed."""
+    out = subprocess.run([tool("TSE_PROTOGEN", "host_tools/protogen/protogen"), "frames", "5"], check=True,
+                         capture_output=True, text=True).stdout
+    rows = []
+    for line in out.splitlines():
+        ident, data, name, *fields = line.split(",")
+        rows.append((int(ident), bytes.fromhex(data), name, {k: int(v) for k, v in (f.split("=") for f in fields)}))
+    return rows
+
+
+def test_codec_reads_and_packs_the_firmware_frames(sample_frames):
+    assert len(sample_frames) == 20 * len(P.MESSAGES)
+    for ident, data, name, values in sample_frames:
+        direction = P.MESSAGES[name][1]
+        frame = pycan.Message(arbitration_id=ident, is_extended_id=False, data=data)
+        assert tcan.decode(frame, direction) == (name, 5, values)
+        packed = tcan.encode(name, 5, **values)
+        assert (packed.arbitration_id, bytes(packed.data)) == (ident, data)
+
+
+def test_codec_refuses_what_the_table_does_not_describe():
+    with pytest.raises(ValueError, match=r"POSE_A\.x = 4000001 is outside \[-4000000, 4000000\]"):
+        tcan.encode("POSE_A", 1, seq=0, x=4000001, y=0)
+    with pytest.raises(ValueError, match=r"POSE_A has no field 'z'"):
+        tcan.encode("POSE_A", 1, seq=0, x=0, y=0, z=0)
+    with pytest.raises(ValueError, match=r"POSE_A\.y is missing"):
+        tcan.encode("POSE_A", 1, seq=0, x=0)
+    with pytest.raises(ValueError, match=r"node 16"):
+        tcan.encode("STOP", 16, seq=0)
+    status = tcan.encode("STATUS", 1, state=3, fault=0, flags=1, queue_depth=0, queue_free=64, last_seq=9, counter=1)
+    short = pycan.Message(arbitration_id=status.arbitration_id, is_extended_id=False, data=bytes(status.data)[:7])
+    with pytest.raises(tcan.DecodeError, match="STATUS is 8 bytes, this frame 7") as e:
+        tcan.decode(short)
+    assert e.value.reason == "bad_length"
+    bad = bytearray(status.data)
+    bad[0] = 99  # no such state
+    with pytest.raises(tcan.DecodeError, match=r"STATUS\.state = 99") as e:
+        tcan.decode(pycan.Message(arbitration_id=status.arbitration_id, is_extended_id=False, data=bytes(bad)))
+    assert (e.value.reason, e.value.field) == ("range", "state")
+    with pytest.raises(tcan.DecodeError) as e:
+        tcan.decode(pycan.Message(arbitration_id=0x7F1, is_extended_id=False, data=b""))
+    assert e.value.reason == "unknown"
+
+
+def test_reject_words_are_tsectls():
+    out = subprocess.run([tool("TSE_REJECT_WORDS", "python/tse_py_reject_words")], check=True, capture_output=True,
+                         text=True).stdout.splitlines()
+    assert len(out) > 40000
+    names = [f[0] for f in P.MESSAGES["REJECT"][3]]
+    differ = []
+    for line in out:
+        key, text = line.split("\t", 1)
+        raw = dict(zip(names, map(int, key.split())))
+        if tcan.reject_words(raw) != text:
+            differ.append((key, text, tcan.reject_words(raw)))
+    assert not differ, f"{len(differ)} differ, e.g. {differ[:2]}"
+
+
+def test_rejected_carries_the_reason_scissor_status_and_path_fraction():
+    fn = P.MESSAGES["MOVE_COMMIT"][0]
+    e = tcan.Rejected({"function": fn, "seq": 4, "reason": 8, "scissor": 2, "kin_status": 2, "field": 0, "where": 375})
+    assert (e.command, e.reason, e.scissor, e.status, e.fraction) == ("MOVE_COMMIT", "kinematics", 2, "unreachable", 0.375)
+    assert str(e).startswith("rejected: kinematics: MOVE_COMMIT: scissor 2 is unreachable at 37.5% of the path")
+    e = tcan.Rejected({"function": fn, "seq": 4, "reason": 4, "scissor": 0, "kin_status": 0, "field": 1, "where": 0})
+    assert (e.reason, e.state, e.scissor, e.status, e.fraction) == ("state", "disabled", None, None, None)
+
+
+class Recorder(pycan.Listener):
+    def __init__(self):
+        self.frames = []
+
+    def on_message_received(self, msg):
+        self.frames.append(msg)
+
+
+@pytest.fixture
+def quiet_controller():
+    """A Controller on python-can's in-process virtual bus, with a listener on the same channel
+    that records every frame it sends (nobody answers)."""
+    channel = f"tse-test-{os.getpid()}"
+    ctl_bus = pycan.Bus(interface="virtual", channel=channel, receive_own_messages=False)
+    spy_bus = pycan.Bus(interface="virtual", channel=channel)
+    rec = Recorder()
+    notifier = pycan.Notifier(spy_bus, [rec], timeout=0.05)
+    ctl = tcan.Controller(node=3, timeout=0.3, heartbeat=False, bus=ctl_bus)
+    yield ctl, rec
+    ctl.close()
+    notifier.stop()
+    spy_bus.shutdown()
+    ctl_bus.shutdown()
+
+
+def test_bad_arguments_send_nothing(quiet_controller):
+    ctl, rec = quiet_controller
+    with pytest.raises(ValueError, match=r"x = 4\.5 m is outside the wire's range -4\.\.4 m"):
+        ctl.move([4.5, 0, 1, 0, 0, 0])
+    with pytest.raises(ValueError, match="six numbers"):
+        ctl.move([0, 0, 1])
+    with pytest.raises(ValueError, match=r"yaw = nan rad"):
+        ctl.move([0, 0, 1, 0, 0, math.nan])
+    with pytest.raises(ValueError, match="duration must be 0.001 to 3600 s"):
+        ctl.move([0, 0, 1, 0, 0, 0], duration=0)
+    with pytest.raises(ValueError, match="not both"):
+        ctl.move([0, 0, 1, 0, 0, 0], duration=1, speed=0.1)
+    with pytest.raises(ValueError, match=r"row 1: t = 0\.0015 s is 0\.0005 s after the previous row"):
+        ctl.trajectory([(0.001, 0, 0, 1, 0, 0, 0), (0.0015, 0, 0, 1, 0, 0, 0)])
+    with pytest.raises(ValueError, match=r"row 0: roll = 4\.0 rad is outside"):
+        ctl.trajectory([(0.5, 0, 0, 1, 4.0, 0, 0)])
+    with pytest.raises(ValueError, match="unknown parameter 'slide_speed'"):
+        ctl.params["slide_speed"] = 0.1
+    with pytest.raises(ValueError, match=r"slide_vmax = 3 m/s is outside 0\.001\.\.[0-9.]+ m/s"):
+        ctl.params["slide_vmax"] = 3
+    with pytest.raises(ValueError, match="eta_deg = 'abc' is not a number"):
+        ctl.params.set("eta_deg", "abc")
+    assert rec.frames == []
+
+
+def test_silence_is_a_timeout_and_the_heartbeat_beats(quiet_controller):
+    ctl, rec = quiet_controller
+    with pytest.raises(tcan.Timeout, match="no STATUS from node 3"):
+        ctl.enable()
+    ctl.start_heartbeat()
+    import time
+    time.sleep(0.35)
+    ctl.stop_heartbeat()
+    n = len(rec.frames)
+    time.sleep(0.25)
+    beats = [tcan.decode(f, "to_controller") for f in rec.frames]
+    assert n >= 3 and len(rec.frames) == n, "the heartbeat beats every 100 ms and stops when told"
+    assert [b[2]["counter"] for b in beats] == list(range(n)) and {b[:2] for b in beats} == {("HOST_HEARTBEAT", 3)}

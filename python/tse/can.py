@@ -1,0 +1,793 @@
+"""tse.can: a TSE controller on a CAN bus, from a Python session (python-can).
+
+    from tse.can import Controller
+    with Controller("vcan0", node=1) as ctl:       # the heartbeat runs while the session is open
+        ctl.enable(); ctl.home()
+        ctl.move([0.1, -0.05, 1.1, 0.1, -0.05, 0.2], duration=2)
+        print(ctl.status())
+
+The frames are packed and read from the protocol's message table as protogen prints it
+(tse/_protocol.py, generated from firmware/src/proto_table.c, with a test that it is current), so
+nothing here restates the wire format.  The exchanges are tsectl's: a command carries the next
+sequence number after the controller's last accepted one (read from STATUS), and is answered by
+exactly one ACK or REJECT; a REJECT raises Rejected, worded as tsectl words it.
+
+Errors: ValueError for an argument that cannot be sent (nothing is sent), Rejected for a refusal
+by the controller, Fault for a motion that ended in fault or e-stop, Timeout when the controller
+does not answer in time.  All but ValueError derive from TseError.
+"""
+
+import math
+import queue
+import threading
+import time
+from collections import namedtuple
+
+import can as _pycan
+
+from . import _protocol as _P
+
+__all__ = ["Controller", "Status", "Telemetry", "TseError", "Rejected", "Fault", "Timeout",
+           "encode", "decode", "reject_words"]
+
+# --- The codec, driven by the table --------------------------------------------------------------
+
+_SIZE = {"u8": 1, "i8": 1, "u16": 2, "i16": 2, "u24": 3, "i24": 3, "u32": 4, "i32": 4}
+_BY_FUNCTION = {(d[0], d[1]): name for name, d in _P.MESSAGES.items()}
+_FIELDS = {name: tuple(f[0] for f in d[3]) for name, d in _P.MESSAGES.items()}
+
+
+def _field(message, name):
+    for f in _P.MESSAGES[message][3]:
+        if f[0] == name:
+            return f
+    raise KeyError(f"{message} has no field {name}")
+
+
+def encode(message, node, **values):
+    """The frame of MESSAGE (a table name, e.g. "POSE_A") to or from NODE (0..15) with the given
+    raw field values (every field of the message, integers).  ValueError names a field that is
+    missing, unknown or outside the table's range."""
+    if message not in _P.MESSAGES:
+        raise ValueError(f"unknown message {message!r}")
+    function, _direction, length, fields, _doc = _P.MESSAGES[message]
+    if not isinstance(node, int) or not 0 <= node <= _P.NODE_MASK:
+        raise ValueError(f"node {node!r} is not 0..{_P.NODE_MASK}")
+    unknown = set(values) - set(_FIELDS[message])
+    if unknown:
+        raise ValueError(f"{message} has no field {sorted(unknown)[0]!r} (fields: {', '.join(_FIELDS[message])})")
+    data = bytearray(length)
+    for name, ftype, offset, lo, hi, *_ in fields:
+        if name not in values:
+            raise ValueError(f"{message}.{name} is missing")
+        v = values[name]
+        if isinstance(v, bool) or not isinstance(v, int):
+            raise ValueError(f"{message}.{name} = {v!r} is not an integer")
+        if not lo <= v <= hi:
+            raise ValueError(f"{message}.{name} = {v} is outside [{lo}, {hi}] (raw units)")
+        n = _SIZE[ftype]
+        data[offset:offset + n] = (v & ((1 << (8 * n)) - 1)).to_bytes(n, "little")
+    return _pycan.Message(arbitration_id=function << _P.NODE_BITS | node, is_extended_id=False, data=bytes(data))
+
+
+class DecodeError(ValueError):
+    """A frame the table does not describe: reason is the protocol's word (unknown, bad_length,
+    range) and field the offending field's name (range only)."""
+
+    def __init__(self, reason, text, field=None):
+        super().__init__(text)
+        self.reason = reason
+        self.field = field
+
+
+def decode(frame, direction="to_host"):
+    """(message name, node, {field: raw value}) of a python-can frame travelling in DIRECTION
+    ("to_host" or "to_controller"); DecodeError when the table does not describe it."""
+    if frame.is_extended_id or frame.is_remote_frame or frame.is_error_frame or frame.arbitration_id > 0x7FF:
+        raise DecodeError("unknown", f"frame 0x{frame.arbitration_id:X} is not a standard data frame")
+    name = _BY_FUNCTION.get((frame.arbitration_id >> _P.NODE_BITS, direction))
+    if name is None:
+        raise DecodeError("unknown", f"no {direction} message has function 0x{frame.arbitration_id >> _P.NODE_BITS:02X}")
+    _function, _direction, length, fields, _doc = _P.MESSAGES[name]
+    if frame.dlc != length:
+        raise DecodeError("bad_length", f"{name} is {length} bytes, this frame {frame.dlc}")
+    out = {}
+    for fname, ftype, offset, lo, hi, *_ in fields:
+        n = _SIZE[ftype]
+        v = int.from_bytes(bytes(frame.data[offset:offset + n]), "little", signed=ftype.startswith("i"))
+        if not lo <= v <= hi:
+            raise DecodeError("range", f"{name}.{fname} = {v} is outside [{lo}, {hi}]", fname)
+        out[fname] = v
+    return name, frame.arbitration_id & _P.NODE_MASK, out
+
+
+def _enum(kind, value):
+    return _P.ENUMS[kind].get(value, "?")
+
+
+def _enum_value(kind, name):
+    return next(v for v, n in _P.ENUMS[kind].items() if n == name)
+
+
+# --- What the controller reports -----------------------------------------------------------------
+
+Status = namedtuple("Status", "state fault homed enabled estop_open switch_alarm error_passive "
+                              "queue_depth queue_free last_seq counter")
+Status.__doc__ = """A STATUS frame: state and fault as the table names them ("idle", "none", ...); the
+flags (homed, drives enabled, e-stop input open, a switch disagreeing with the step count, CAN error
+passive); the trajectory queue; the last accepted sequence number; the free-running counter."""
+
+Telemetry = namedtuple("Telemetry", "time slides pose state")
+Telemetry.__doc__ = """One telemetry period: time (python-can's receive time of its last frame, s),
+slides (the six commanded slide positions A1, B1, A2, B2, A3, B3, m), pose (x, y, z in m, roll,
+pitch, yaw in rad, from the controller's forward kinematics; None before homing) and the state of
+the latest STATUS."""
+
+_AT_REST = ("idle", "disabled", "fault", "estop")
+_SLIDES = ("A1", "B1", "A2", "B2", "A3", "B3")
+
+
+def _status_of(v):
+    f = v["flags"]
+    return Status(_enum("state", v["state"]), _enum("fault", v["fault"]), bool(f & 1), bool(f & 2), bool(f & 4),
+                  bool(f & 8), bool(f & 16), v["queue_depth"], v["queue_free"], v["last_seq"], v["counter"])
+
+
+class TseError(Exception):
+    """Anything the controller (or its silence) refused."""
+
+
+class Timeout(TseError):
+    """No answer within the time limit."""
+
+
+class Fault(TseError):
+    """A motion that ended in fault or e-stop: state and fault as STATUS names them."""
+
+    def __init__(self, text, state, fault):
+        super().__init__(text)
+        self.state = state
+        self.fault = fault
+
+
+class Rejected(TseError):
+    """A REJECT: the controller refused a command and applied nothing of it.
+
+    command   the refused message ("MOVE_COMMIT", ...)
+    reason    the protocol's word: "kinematics", "timing", "state", "not_homed", ...
+    scissor   the first failing scissor 1..3 (kinematics, timing), else None
+    status    the kinematic status of the first failing point ("unreachable", ...), else None
+    fraction  where along the path the first failing point is, 0..1 (kinematics), else None
+    state     the controller's state when it refused (reason "state"), else None
+    row       the trajectory row (0-based) that was refused (trajectory only), else None
+    raw       the REJECT's fields
+    str(e) is tsectl's wording: "rejected: REASON: ...".
+    """
+
+    def __init__(self, raw, row=None, prefix=""):
+        self.raw = dict(raw)
+        self.command = _command_name(raw["function"])
+        self.reason = _enum("reason", raw["reason"])
+        kin = self.reason == "kinematics"
+        self.scissor = raw["scissor"] if self.reason in ("kinematics", "timing") else None
+        self.status = _enum("kin_status", raw["kin_status"]) if kin else None
+        self.fraction = raw["where"] / 1000.0 if kin else None
+        self.state = _enum("state", raw["field"]) if self.reason == "state" else None
+        self.row = row
+        self.words = reject_words(raw)
+        super().__init__(prefix + self.words)
+
+
+def _command_name(function):
+    return _BY_FUNCTION.get((function, "to_controller"), "?")
+
+
+def _state_advice(function, state):
+    m = _command_name(function)
+    if state in ("fault", "estop"):
+        if m == "CLEAR_FAULT":
+            return "the e-stop input is open: close it, then clear"
+        return "clear it first ('tsectl clear'), then enable and home"
+    if m == "HOME":
+        if state == "homing":
+            return "homing is already running: wait for it ('tsectl home --wait' waits)"
+        if state == "disabled":
+            return "enable the drives first ('tsectl enable')"
+        return "wait until the motion ends, or stop it ('tsectl stop')"
+    if m == "ENABLE":
+        return "try again" if state == "disabled" else "the drives are already enabled"
+    if m == "DISABLE":
+        return "stop the motion first ('tsectl stop'), then disable"
+    if m == "CLEAR_FAULT":
+        return "there is no fault to clear"
+    if m in ("MOVE_COMMIT", "TRAJ_COMMIT"):
+        if state == "disabled":
+            return "enable and home first ('tsectl enable', 'tsectl home --wait')"
+        if state == "homing":
+            return "wait for homing to end ('tsectl home --wait')"
+        if state == "stopping":
+            return ("the controller is bringing the robot to rest (a STOP, a fault or the host falling "
+                    "behind ended the motion): wait until it is idle, then start again")
+        return ("another motion is running or stopping: wait for it to end, or stop it "
+                "('tsectl stop'); this controller does not queue a move behind a running one")
+    if m in ("PARAM_SET", "PARAM_SAVE"):
+        return "parameters change only while disabled or in fault: stop, then 'tsectl disable'"
+    return "see 'tsectl --help' for what each state accepts"
+
+
+def _param_name(pid):
+    return _P.PARAMS[pid][0] if 0 <= pid < len(_P.PARAMS) else None
+
+
+def reject_words(raw):
+    """A REJECT's fields (raw values, as decode gives them) in tsectl's words:
+    "rejected: REASON: explanation" (host_tools/tsectl/reject_text.c; a test holds the two equal)."""
+    function, reason, scissor, kin, field, where = (raw[k] for k in
+                                                   ("function", "reason", "scissor", "kin_status", "field", "where"))
+    rn, cmd = _enum("reason", reason), _command_name(function)
+    if rn == "kinematics":
+        return (f"rejected: kinematics: {cmd}: scissor {scissor} is {_enum('kin_status', kin)} at "
+                f"{where / 10.0:.1f}% of the path (the pose, or the path to it, leaves the workspace "
+                f"with its margins; 'tse-kin ik' shows the pose's status)")
+    if rn == "timing":
+        slide = _SLIDES[(field & 15) - 1] if 1 <= (field & 15) <= 6 else "?"
+        ratio = f"{where / 1000.0:.2f}"
+        if field & 16:
+            return (f"rejected: timing: {cmd}: slide {slide} (scissor {scissor}) would need {ratio} times its "
+                    "acceleration limit (slide_amax): the speed changes too abruptly here. Between points the "
+                    "plate moves at constant speed, so every change of speed at a point must be small: ease in "
+                    "and out, sample a smooth path (10-50 ms apart), and start at rest where the plate is")
+        more = (where - 1000 + 9) // 10 if where > 1000 else 1
+        return (f"rejected: timing: {cmd}: slide {slide} (scissor {scissor}) would need {ratio} times its speed "
+                f"limit (slide_vmax): give this point at least {more}% more time from the previous one")
+    if rn == "state":
+        return (f"rejected: state: {cmd} is not taken while the controller is {_enum('state', field)}: "
+                f"{_state_advice(function, _enum('state', field))}")
+    if rn == "not_homed":
+        return f"rejected: not_homed: {cmd}: the slides have no zero yet: home first ('tsectl home --wait')"
+    if rn == "range":
+        entry = _BY_FUNCTION.get((function, "to_controller"))
+        fields = _P.MESSAGES[entry][3] if entry else ()
+        if field < len(fields):
+            return f"rejected: range: {cmd}.{fields[field][0]} is outside [{fields[field][3]}, {fields[field][4]}] (raw units)"
+        return f"rejected: range: {cmd}: field {field} is outside its range"
+    if rn == "param_unknown":
+        return f"rejected: param_unknown: this controller has no parameter {field} (firmware older than tsectl?)"
+    if rn == "param_range":
+        return (f"rejected: param_range: {_param_name(field) or 'the parameter'} is outside its range "
+                "(see 'tsectl params list')")
+    if rn == "param_set":
+        return (f"rejected: param_set: {_param_name(field) or 'the parameter'}: the value is in range but the whole "
+                "set it gives is not valid (geometry, stroke, homing switches or step timing); nothing was changed")
+    if rn == "storage":
+        return ("rejected: storage: the controller could not write its parameter store (on the board a flash "
+                "erase or write failed; in tse-sim, no --params FILE or the file could not be written): nothing "
+                "was saved, the running parameters are unchanged but are lost at power-off")
+    if rn == "queue_full":
+        return f"rejected: queue_full: {cmd}: the trajectory queue is full (send when STATUS shows room)"
+    if rn == "stale":
+        return (f"rejected: stale: {cmd}: its sequence number is not newer than the last accepted (another host "
+                "commanding this node?)")
+    if rn == "incomplete":
+        return f"rejected: incomplete: {cmd}: a part of its pose did not arrive (frames lost on the bus?)"
+    return f"rejected: {rn}: {cmd} (a protocol mismatch between tsectl and the controller?)"
+
+
+# --- Values people write -------------------------------------------------------------------------
+
+def _round_away(x):
+    return int(math.floor(abs(x) + 0.5)) * (1 if x >= 0 else -1)
+
+
+def _pose_raw(pose):
+    """The six wire integers of a pose (m, rad), checked against the POSE fields' ranges."""
+    try:
+        p = [float(v) for v in pose]
+    except (TypeError, ValueError):
+        raise ValueError(f"a pose is six numbers x, y, z (m), roll, pitch, yaw (rad), not {pose!r}") from None
+    if len(p) != 6:
+        raise ValueError(f"a pose is six numbers x, y, z (m), roll, pitch, yaw (rad), not {len(p)}")
+    names = ("x", "y", "z", "roll", "pitch", "yaw")
+    where = ("POSE_A", "POSE_A", "POSE_B", "POSE_B", "POSE_C", "POSE_C")
+    raw = []
+    for k, v in enumerate(p):
+        _n, _t, _o, lo, hi, unit, scale, *_ = _field(where[k], names[k])
+        if not math.isfinite(v) or not lo <= _round_away(v / scale) <= hi:
+            raise ValueError(f"{names[k]} = {v!r} {unit} is outside the wire's range {lo * scale:g}..{hi * scale:g} {unit}")
+        raw.append(_round_away(v / scale))
+    return raw
+
+
+def _dt_raw(t):
+    return _round_away(t * 1e6)
+
+
+# --- The controller ------------------------------------------------------------------------------
+
+class Controller:
+    """One controller on a CAN bus (python-can).
+
+    Controller(channel="vcan0", node=1, interface="socketcan", timeout=2.0, heartbeat=True, bus=None)
+    opens the bus (or uses BUS, a python-can bus the caller owns) and starts a reader thread and,
+    with heartbeat, the host heartbeat (HOST_HEARTBEAT every 100 ms: the controller's watchdog
+    stops the robot and latches a fault when it falls silent while enabled).  timeout is how long
+    an answer may take (s).  Use it as a context manager, or call close(): on exit a running
+    motion is stopped (STOP) and waited for, then the heartbeat and the reader end.
+    """
+
+    HEARTBEAT_PERIOD = 0.1
+
+    def __init__(self, channel="vcan0", node=1, interface="socketcan", timeout=2.0, heartbeat=True, bus=None):
+        if not isinstance(node, int) or not 1 <= node <= _P.NODE_MASK:
+            raise ValueError(f"node {node!r} is not 1..{_P.NODE_MASK}")
+        if not timeout > 0:
+            raise ValueError(f"timeout {timeout!r} is not a positive number of seconds")
+        self.node = node
+        self.timeout = float(timeout)
+        self._own_bus = bus is None
+        filters = [{"can_id": node, "can_mask": _P.NODE_MASK, "extended": False}]
+        self._bus = bus if bus is not None else _pycan.Bus(channel=channel, interface=interface, can_filters=filters)
+        self._cond = threading.Condition()
+        self._send_lock = threading.Lock()
+        self._cmd_lock = threading.RLock()
+        self._status = None
+        self._status_serial = 0
+        self._answers = []        # (serial, name, fields) of ACK, REJECT and PARAM_VALUE, newest last
+        self._serial = 0
+        self._watchers = []
+        self._tel = {}
+        self._closed = False
+        self._reader = threading.Thread(target=self._read, name=f"tse-can-reader-{node}", daemon=True)
+        self._reader.start()
+        self._hb_stop = None
+        self._hb_thread = None
+        self.params = _Params(self)
+        if heartbeat:
+            self.start_heartbeat()
+
+    # -- session --
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+    def close(self):
+        """Stops a running motion (and waits for rest), ends the heartbeat and the reader, and
+        closes the bus if this object opened it.  Calling it again does nothing."""
+        if self._closed:
+            return
+        try:
+            st = self._status
+            if st is not None and st.state not in _AT_REST:
+                self.stop(wait=True)
+        except TseError:
+            pass
+        finally:
+            self.stop_heartbeat()
+            self._closed = True
+            self._reader.join(timeout=1.0)
+            if self._own_bus:
+                self._bus.shutdown()
+
+    def start_heartbeat(self):
+        """Starts the host heartbeat (if it is not running)."""
+        if self._hb_thread is not None:
+            return
+        self._hb_stop = threading.Event()
+        self._hb_thread = threading.Thread(target=self._beat, args=(self._hb_stop,), name="tse-can-heartbeat",
+                                           daemon=True)
+        self._hb_thread.start()
+
+    def stop_heartbeat(self):
+        """Ends the host heartbeat: an enabled controller's watchdog then stops it and latches a
+        watchdog fault (unless its watchdog_ms is 0)."""
+        if self._hb_thread is None:
+            return
+        self._hb_stop.set()
+        self._hb_thread.join()
+        self._hb_thread = None
+
+    @property
+    def heartbeat_running(self):
+        return self._hb_thread is not None
+
+    def _beat(self, stop):
+        counter = 0
+        while not stop.is_set():
+            try:
+                self._send("HOST_HEARTBEAT", counter=counter)
+            except (_pycan.CanError, OSError):
+                pass  # a full transmit queue: the next beat tries again
+            counter = (counter + 1) & 0xFF
+            stop.wait(self.HEARTBEAT_PERIOD)
+
+    # -- the bus --
+    def _send(self, message, node=None, **values):
+        frame = encode(message, self.node if node is None else node, **values)
+        with self._send_lock:
+            self._bus.send(frame, timeout=self.timeout)
+
+    def _read(self):
+        while not self._closed:
+            try:
+                frame = self._bus.recv(0.1)
+            except (_pycan.CanError, OSError, ValueError):
+                if self._closed:
+                    return
+                time.sleep(0.01)
+                continue
+            if frame is None:
+                continue
+            try:
+                name, node, v = decode(frame)
+            except DecodeError:
+                continue
+            if node != self.node:
+                continue
+            self._take(name, v, frame.timestamp)
+
+    def _take(self, name, v, stamp):
+        with self._cond:
+            if name == "STATUS":
+                self._status = _status_of(v)
+                self._status_serial += 1
+            elif name in ("ACK", "REJECT", "PARAM_VALUE"):
+                self._serial += 1
+                self._answers.append((self._serial, name, v))
+                del self._answers[:-512]
+            else:
+                self._telemetry(name, v, stamp)
+                return
+            self._cond.notify_all()
+
+    def _telemetry(self, name, v, stamp):
+        tel = self._tel
+        if name.startswith("SLIDES_"):
+            k = "ABC".index(name[-1])
+            tel[k] = (v[f"s_a{k + 1}"] * 1e-9, v[f"s_b{k + 1}"] * 1e-9)
+            if k == 0:
+                for j in (3, 4, 5):
+                    tel.pop(j, None)  # a new period: never mix two
+            homed = self._status is not None and self._status.homed
+            if k == 2 and not homed and all(j in tel for j in (0, 1, 2)):
+                self._publish(Telemetry(stamp, tel[0] + tel[1] + tel[2], None, self._state()))
+        else:
+            k = "ABC".index(name[-1])
+            keys = (("x", "y"), ("z", "roll"), ("pitch", "yaw"))[k]
+            tel[3 + k] = (v[keys[0]] * 1e-6, v[keys[1]] * 1e-6)
+            if k == 2 and all(j in tel for j in range(6)):
+                self._publish(Telemetry(stamp, tel[0] + tel[1] + tel[2], tel[3] + tel[4] + tel[5], self._state()))
+
+    def _state(self):
+        return self._status.state if self._status is not None else None
+
+    def _publish(self, t):
+        for q in list(self._watchers):
+            try:
+                q.put_nowait(t)
+            except queue.Full:
+                pass  # a watcher that does not read loses its oldest news, never blocks the reader
+
+    # -- exchanges --
+    def _mark(self):
+        with self._cond:
+            return self._serial
+
+    def _wait_for(self, pick, timeout, what):
+        """Waits until pick() (called under the lock) returns something, up to timeout s."""
+        end = time.monotonic() + timeout
+        with self._cond:
+            while True:
+                got = pick()
+                if got is not None:
+                    return got
+                left = end - time.monotonic()
+                if left <= 0 or self._closed:
+                    raise Timeout(f"no {what} from node {self.node} within {timeout:g} s (is it on the bus?)")
+                self._cond.wait(min(left, 0.2))
+
+    def _fresh_status(self, timeout=None):
+        with self._cond:
+            seen = self._status_serial
+        return self._wait_for(lambda: self._status if self._status_serial > seen else None,
+                              self.timeout if timeout is None else timeout, "STATUS")
+
+    def _answer(self, mark, message, seq):
+        function = _P.MESSAGES[message][0]
+
+        def pick():
+            for serial, name, v in self._answers:
+                if serial > mark and name in ("ACK", "REJECT") and v["function"] == function and \
+                        (seq is None or v["seq"] == seq):
+                    return name, v
+            return None
+        return self._wait_for(pick, self.timeout, f"answer to {message}")
+
+    def _command(self, message, seq=None, **values):
+        """Sends MESSAGE (with the next sequence number unless seq is given) and returns its ACK's
+        fields; a REJECT raises Rejected."""
+        with self._cmd_lock:
+            if seq is None:
+                seq = (self._fresh_status().last_seq + 1) & 0xFF
+            if "seq" in _FIELDS[message]:
+                values["seq"] = seq
+            mark = self._mark()
+            self._send(message, **values)
+            name, v = self._answer(mark, message, seq if "seq" in _FIELDS[message] else None)
+            if name == "REJECT":
+                raise Rejected(v)
+            return v
+
+    def _wait_rest(self, expected, what):
+        """tsectl's wait: follows STATUS until the controller is at rest after having been seen in
+        motion (or has been at rest for 2 s without moving).  Fault at rest in fault or e-stop."""
+        t0 = time.monotonic()
+        limit = 3.0 * (expected if expected > 0 else 60.0) + 60.0
+        seen_motion = False
+        while True:
+            el = time.monotonic() - t0
+            if el > limit:
+                raise Timeout(f"{what} did not come to rest within {limit:.0f} s")
+            st = self._fresh_status(min(self.timeout, limit - el + 0.1))
+            if st.state not in _AT_REST:
+                seen_motion = True
+            elif seen_motion:
+                if st.state == "idle" and st.fault == "none":
+                    return st
+                raise Fault(f"{what} ended {st.state} after {el:.2f} s, fault {st.fault}", st.state, st.fault)
+            elif el > 2.0:  # never seen moving: already at rest
+                if st.state in ("fault", "estop"):
+                    raise Fault(f"{what}: the controller is {st.state}, fault {st.fault}", st.state, st.fault)
+                return st
+
+    # -- commands --
+    def status(self):
+        """The controller's next STATUS (a Status)."""
+        return self._fresh_status()
+
+    def enable(self):
+        """Energises the drives."""
+        self._command("ENABLE")
+
+    def disable(self):
+        """De-energises the drives (only at rest); the slides keep their zero."""
+        self._command("DISABLE")
+
+    def clear(self):
+        """Leaves fault or e-stop (the e-stop input must be closed); the drives stay off."""
+        self._command("CLEAR_FAULT")
+
+    def stop(self, wait=False):
+        """Controlled stop: the motion decelerates along its path and the trajectory queue is
+        dropped.  wait: until at rest."""
+        self._command("STOP")
+        if wait:
+            return self._wait_rest(0, "stopping")
+        return None
+
+    def estop(self):
+        """Emergency stop, sent at once (no STATUS first): stepping is cut and an e-stop fault
+        latches."""
+        with self._cmd_lock:
+            mark = self._mark()
+            self._send("ESTOP", seq=0)
+            name, v = self._answer(mark, "ESTOP", 0)
+            if name == "REJECT":
+                raise Rejected(v)
+
+    def home(self, wait=True):
+        """Homes the six slides, then goes to the home pose.  wait: until at rest (a homing
+        already running is waited for)."""
+        try:
+            self._command("HOME")
+        except Rejected as e:
+            if not (wait and e.reason == "state" and e.state == "homing"):
+                raise
+        if wait:
+            self._wait_rest(0, "homing")
+
+    def move(self, pose, duration=None, speed=None, wait=True):
+        """Moves the plate to pose (x, y, z in m; roll, pitch, yaw in rad) in a straight line in
+        position, in duration s or at the plate speed speed m/s (neither: 2 s).  The controller
+        validates the whole path before the first step.  Returns the planned duration (s, after
+        any stretching to the slide limits); wait: until at rest."""
+        if duration is not None and speed is not None:
+            raise ValueError("give duration or speed, not both")
+        kind = "speed" if speed is not None else "duration"
+        value = speed if speed is not None else (2.0 if duration is None else duration)
+        try:
+            value = float(value)
+        except (TypeError, ValueError):
+            raise ValueError(f"{kind} {value!r} is not a number") from None
+        lo, hi = _field("MOVE_COMMIT", "value")[3:5]
+        raw = _round_away(value * (1e6 if kind == "speed" else 1e3)) if math.isfinite(value) else 0
+        if not lo <= raw <= hi:
+            raise ValueError("speed must be 1e-6 to 3.6 m/s" if kind == "speed" else
+                             "duration must be 0.001 to 3600 s")
+        p = _pose_raw(pose)
+        with self._cmd_lock:
+            seq = (self._fresh_status().last_seq + 1) & 0xFF
+            self._send_pose(seq, p)
+            ack = self._command("MOVE_COMMIT", seq=seq, kind=_enum_value("move_kind", kind), value=raw)
+        planned = ack["detail"] * 1e-3
+        if wait:
+            self._wait_rest(planned, "moving")
+        return planned
+
+    def _send_pose(self, seq, raw):
+        self._send("POSE_A", seq=seq, x=raw[0], y=raw[1])
+        self._send("POSE_B", seq=seq, z=raw[2], roll=raw[3])
+        self._send("POSE_C", seq=seq, pitch=raw[4], yaw=raw[5])
+
+    def trajectory(self, rows, progress=None):
+        """Streams a timed path: rows of (t, x, y, z, roll, pitch, yaw), t in s from the moment
+        the controller takes the first row (the plate at rest where it is), with flow control, and
+        waits until the robot is at rest on the last row.  Every row is checked before anything is
+        sent (ValueError naming the row).  progress(sent, total) is called after each row.  The
+        rule is tsectl's: the path runs to its last row, or (a row refused, a fault, an exception
+        such as KeyboardInterrupt) the robot is stopped with STOP and waited for before the error
+        is raised (Rejected with .row for a refused row); no part of a path is left running."""
+        rows = [tuple(r) for r in rows]
+        if not rows:
+            raise ValueError("a trajectory needs at least one row")
+        lo_dt, hi_dt = _field("TRAJ_COMMIT", "dt")[3:5]
+        plan, prev_us = [], 0
+        for i, r in enumerate(rows):
+            if len(r) != 7:
+                raise ValueError(f"row {i}: {len(r)} values, expected 7 (t, x, y, z, roll, pitch, yaw)")
+            try:
+                t = float(r[0])
+                pose = _pose_raw(r[1:])
+            except ValueError as e:
+                raise ValueError(f"row {i}: {e}") from None
+            if not math.isfinite(t):
+                raise ValueError(f"row {i}: t = {r[0]!r} is not a finite time")
+            us = _dt_raw(t)
+            if not lo_dt <= us - prev_us <= hi_dt:
+                raise ValueError(f"row {i}: t = {t:g} s is {(us - prev_us) * 1e-6:g} s after the "
+                                 f"{'previous row' if i else 'start'}; it must be {lo_dt * 1e-6:g} to {hi_dt * 1e-6:g} s")
+            plan.append((us - prev_us, pose))
+            prev_us = us
+        with self._cmd_lock:
+            st = self._fresh_status()
+            if st.state != "idle" or not st.homed:
+                raise TseError(f"not started: a trajectory starts at rest from a homed, enabled controller, and node "
+                               f"{self.node} is {st.state}{'' if st.homed else ' and not homed'}")
+            try:
+                self._stream(plan, rows, st, progress)
+            except BaseException:
+                self._stop_at_rest()
+                raise
+
+    def _stream(self, plan, rows, st, progress):
+        n, seq, free = len(plan), (st.last_seq + 1) & 0xFF, st.queue_free
+        t0 = time.monotonic()
+        i = 0
+        while i < n:
+            while free <= 0:  # flow control: wait for room, as the controller reports it
+                s = self._fresh_status()
+                free = s.queue_free
+                if s.state not in ("moving", "idle"):
+                    raise Fault(f"the controller stopped ({s.state}, fault {s.fault}) while row {i} waited to be sent",
+                                s.state, s.fault)
+            dt, pose = plan[i]
+            self._send_pose(seq, pose)
+            mark = self._mark()
+            self._send("TRAJ_COMMIT", seq=seq, dt=dt, flags=1 if i == n - 1 else 0)
+            name, v = self._answer(mark, "TRAJ_COMMIT", seq)
+            seq = (seq + 1) & 0xFF
+            if name == "REJECT":
+                if _enum("reason", v["reason"]) == "queue_full":
+                    free = 0  # the status was behind: wait for room, send the row again
+                    continue
+                raise Rejected(v, row=i, prefix=f"row {i} (t = {rows[i][0]:g} s) was refused by the controller: ")
+            free = v["queue_free"]
+            i += 1
+            if progress is not None:
+                progress(i, n)
+        sent = time.monotonic() - t0
+        self._wait_rest(max(plan_end(plan) - sent, 0.1), "finishing")
+
+    def _stop_at_rest(self):
+        try:
+            self.stop(wait=True)
+        except TseError:
+            pass
+
+    def watch(self, timeout=None, maxlen=1000):
+        """An iterator of Telemetry, one per telemetry period, from now on.  It ends when none
+        has come for timeout s (None: never).  Up to maxlen periods wait while the caller is
+        busy; beyond that the newest are dropped."""
+        q = queue.Queue(maxsize=maxlen)
+        self._watchers.append(q)
+        try:
+            while True:
+                try:
+                    yield q.get(timeout=timeout)
+                except queue.Empty:
+                    return
+        finally:
+            self._watchers.remove(q)
+
+    # -- parameters (ctl.params) --
+    def _param_value(self, mark, pid):
+        def pick():
+            for serial, name, v in self._answers:
+                if serial > mark and name == "PARAM_VALUE" and v["param"] == pid:
+                    return v["value"]
+            return None
+        return self._wait_for(pick, self.timeout, f"PARAM_VALUE of {_param_name(pid)}")
+
+    def _param_exchange(self, message, **values):
+        with self._cmd_lock:
+            mark = self._mark()
+            self._send(message, **values)
+            name, v = self._answer(mark, message, None)
+            if name == "REJECT":
+                raise Rejected(v)
+            return self._param_value(mark, values["param"]) if "param" in values else None
+
+
+def plan_end(plan):
+    return sum(dt for dt, _ in plan) * 1e-6
+
+
+class _Params:
+    """ctl.params: the controller's parameters in SI (m, rad, m/s, ratios; NAME_deg in degrees;
+    names with a unit suffix in that unit), as tsectl params reads and writes them.
+
+        ctl.params["slide_vmax"]            -> 0.15
+        ctl.params["slide_vmax"] = 0.14     (only while disabled or in fault)
+        ctl.params.dump()                   -> {name: value} of every parameter
+        ctl.params.save()                   (non-volatile store)
+    A name the table does not know, or a value outside its range, is a ValueError naming the
+    parameter and the range (nothing is sent); a set the controller refuses raises Rejected."""
+
+    def __init__(self, ctl):
+        self._ctl = ctl
+
+    @staticmethod
+    def names():
+        """Every spelling a parameter may be given by."""
+        return list(_P.PARAM_SPELLINGS)
+
+    @staticmethod
+    def _key(name):
+        key = _P.PARAM_SPELLINGS.get(str(name).lower())
+        if key is None:
+            raise ValueError(f"unknown parameter {name!r} (names: {', '.join(p[0] for p in _P.PARAMS)})")
+        return key
+
+    def get(self, name):
+        pid, per_unit, _unit = self._key(name)
+        return self._ctl._param_exchange("PARAM_GET", param=pid) / per_unit
+
+    def set(self, name, value):
+        """Sets one parameter; returns the value the controller now holds (SI)."""
+        pid, per_unit, unit = self._key(name)
+        pname, _wu, lo, hi, _def, _doc = _P.PARAMS[pid]
+        try:
+            v = float(value)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} = {value!r} is not a number") from None
+        raw = _round_away(v * per_unit) if math.isfinite(v) else None
+        if raw is None or not lo <= raw <= hi:
+            u = f" {unit}" if unit else ""
+            raise ValueError(f"{name} = {value!r}{u} is outside {lo / per_unit:.15g}..{hi / per_unit:.15g}{u}")
+        return self._ctl._param_exchange("PARAM_SET", param=pid, value=raw) / per_unit
+
+    def save(self):
+        """Stores the running set in the controller's non-volatile memory."""
+        magic = _field("PARAM_SAVE", "magic")[3]
+        self._ctl._param_exchange("PARAM_SAVE", magic=magic)
+
+    def dump(self):
+        return {p[0]: self.get(p[0]) for p in _P.PARAMS}
+
+    def __getitem__(self, name):
+        return self.get(name)
+
+    def __setitem__(self, name, value):
+        self.set(name, value)
