@@ -12,9 +12,10 @@ packages=(
   openocd stlink-tools              # flashing the board through an ST-Link
   python3 python3-mpmath            # the independent high-precision oracle
   python3-numpy python3-scipy       # the fsolve baseline of the benchmark; tse.kin's arrays
-  python3-pytest python3-setuptools # tse.kin's tests (python/tests) and pip install ./python
+  python3-pytest python3-setuptools # the Python tests (python/tests) and pip install ./python
+  python3-pip                       # pip install --no-build-isolation ./python (README, python/tests)
   python3-matplotlib                # scripts/study.sh's plots of the design study
-  python3-canmatrix python3-can     # third-party decoders that check the DBC
+  python3-canmatrix python3-can     # third-party decoders that check the DBC; tse.can's bus
   qemu-system-x86 busybox-static cpio can-utils   # the vcan harness (a VM where the kernel has no CAN)
   clang libclang-rt-14-dev          # the fuzz preset (libFuzzer, AddressSanitizer, UBSan)
   cppcheck clang-tidy               # scripts/static.sh

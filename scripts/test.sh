@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Sets up the machine, then builds and runs every test: the host build, the sanitizer build, the
+# Sets up the machine, then builds and runs every test: the host build (with the Python suites,
+# whose pytest closing lines are printed after it), the sanitizer build, the
 # fuzz targets for a bounded time each (TSE_FUZZ_SECONDS, default 60; scripts/fuzz_long.sh runs
 # them for hours), the static analysis (scripts/static.sh), and the board build (whose float
 # kinematics must not pull in software double arithmetic, whose image must fit its flash and RAM
@@ -10,11 +11,20 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
 
+# pytest's closing lines, from the log of a build's last ctest run (ctest shows a passing test's
+# output nowhere else): the Python suites on the host, and tse.can against tse-sim in the VM.
+pytest_lines() {
+  awk '/^[0-9]+\/[0-9]+ Testing: / { t = $3 }
+       /^(pytest .*: )?[0-9]+ (passed|failed).* in [0-9.]+s$/ { print "pytest, " t ": " $0 }' \
+    "$1/Testing/Temporary/LastTest.log"
+}
+
 for preset in host asan; do
   echo "=== ${preset}: configure, build, test"
   cmake --preset "$preset" >/dev/null
   cmake --build --preset "$preset" -j "$jobs"
   ctest --preset "$preset" -j "$jobs"
+  [ "$preset" != host ] || pytest_lines build/host
 done
 
 fuzz_seconds=${TSE_FUZZ_SECONDS:-60}
