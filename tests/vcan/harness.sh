@@ -2,7 +2,7 @@
 # Runs a scenario on a CAN bus: on vcan0 directly where this kernel has vcan (as root), otherwise
 # inside a stock Debian kernel booted under QEMU (this machine's kernel has no CAN; see system.md).
 #
-#   harness.sh [--file PATH]... SCENARIO WORKDIR [BINARY...]
+#   harness.sh [--file PATH]... [--python DIR]... SCENARIO WORKDIR [BINARY...]
 #
 # SCENARIO is a shell script (run by busybox sh on both paths) with vcan0 up, the BINARIES on its
 # PATH and can-utils (cansend, candump) beside them; it prints what it checks and ends with
@@ -15,8 +15,31 @@
 # written once for both.  A missing file, two files with the same name, a missing scenario or
 # binary, or a bad HARNESS_TIMEOUT is an error naming it (exit 2) before anything is set up.
 #
+# Python: with --python DIR (repeatable), and each directory in HARNESS_PYTHON, the scenario can
+# run 'python3': Debian's /usr/bin/python3 (3.11), with python3-can and python3-pytest and the
+# python3-* packages they depend on importable ('python3 -m pytest -q -p no:cacheprovider ...').
+# Its environment has PYTHONPATH holding each DIR (HARNESS_PYTHON's first, then --python's, in
+# order), PYTHONDONTWRITEBYTECODE=1 (nothing is written into the trees, pytest's assertion
+# rewriting included), PYTHONNOUSERSITE=1 and PY_COLORS=0 (the VM's console is a terminal, where
+# pytest would colour).
+# In the VM each DIR is copied to /py/NAME (NAME its last component), its PYTHONPATH entry; on
+# vcan0 the entry is the DIR itself (absolute), and WORKDIR/python-bin, holding only the link
+# python3 -> /usr/bin/python3, comes first on PATH.  The VM gets, in an uncompressed archive of its
+# own: the interpreter and the shared libraries it and its extension modules need (ldd), its
+# standard library less what a test never needs (test, idlelib, tkinter, turtle, turtledemo,
+# lib2to3, ensurepip, pydoc_data, distutils, config-*, CPython's own test extensions, nis) with
+# Debian's compiled .pyc and their sources' mtimes (nothing is compiled under TCG), and the files
+# dpkg lists in /usr/lib/python3/dist-packages for those packages.  There HOME is /, no locale is
+# set (python3 takes its UTF-8 mode: text is UTF-8), the clock is the host's, in UTC, and /tmp (in
+# RAM) is the working directory.  Both paths print "figure: [VM ]python3 -c 'import can, pytest':
+# S s" before the scenario.  A missing DIR, one that is not a directory, one with a ':' in its
+# path, or two with one NAME is an error naming it (exit 2) before anything is set up; without
+# python3-can or python3-pytest installed the harness exits 1.  Without --python the initramfs is
+# what it was.
+#
 # Environment:
 #   HARNESS_FILES="a.csv p.txt"  data files, as --file (use --file for a path with a space)
+#   HARNESS_PYTHON="dir1 dir2"   Python trees, as --python (use --python for a path with a space)
 #   HARNESS_LIVE=1               show the scenario's output as it happens (VM path: progress bars
 #                                included) instead of all at once when the VM has powered off
 #   HARNESS_TIMEOUT=SECONDS      the scenario's time limit (default 480).  A scenario still
@@ -34,11 +57,13 @@ set -u
 
 usage() {
   cat <<'EOF'
-usage: harness.sh [--file PATH]... SCENARIO WORKDIR [BINARY...]
+usage: harness.sh [--file PATH]... [--python DIR]... SCENARIO WORKDIR [BINARY...]
 Runs SCENARIO on vcan0 (here, or in a QEMU VM when this kernel has no CAN) with the BINARIES on its
 PATH; each --file PATH (and each path in HARNESS_FILES) is copied into its working directory.
-Environment: HARNESS_FILES, HARNESS_LIVE=1, HARNESS_TIMEOUT=SECONDS (default 480); see the header
-of this script.
+With --python DIR (and HARNESS_PYTHON) the scenario can run python3 (Debian's, with python-can and
+pytest) with each DIR on PYTHONPATH (in the VM: /py/NAME of DIR).
+Environment: HARNESS_FILES, HARNESS_PYTHON, HARNESS_LIVE=1, HARNESS_TIMEOUT=SECONDS (default 480);
+see the header of this script.
 EOF
 }
 die() { echo "harness: $*" >&2; exit 2; }
@@ -47,13 +72,18 @@ die() { echo "harness: $*" >&2; exit 2; }
 files=()
 read -r -d '' -a env_files <<<"${HARNESS_FILES:-}" # spaces, tabs or newlines between paths
 files+=(${env_files[@]+"${env_files[@]}"})
+pydirs=()
+read -r -d '' -a env_pydirs <<<"${HARNESS_PYTHON:-}"
+pydirs+=(${env_pydirs[@]+"${env_pydirs[@]}"})
 while [ $# -gt 0 ]; do
   case $1 in
     --file) [ $# -ge 2 ] || die "--file needs a PATH"; files+=("$2"); shift 2 ;;
     --file=*) files+=("${1#--file=}"); shift ;;
+    --python) [ $# -ge 2 ] || die "--python needs a DIR"; pydirs+=("$2"); shift 2 ;;
+    --python=*) pydirs+=("${1#--python=}"); shift ;;
     -h | --help) usage; exit 0 ;;
     --) shift; break ;;
-    -*) die "unknown option '$1' (options: --file PATH, --help)" ;;
+    -*) die "unknown option '$1' (options: --file PATH, --python DIR, --help)" ;;
     *) break ;;
   esac
 done
@@ -78,6 +108,21 @@ for f in ${files[@]+"${files[@]}"}; do
   [ -z "${seen[$name]+x}" ] || die "two data files named $name: ${seen[$name]} and $f"
   seen[$name]=$f
 done
+declare -A pyseen=()
+pypath=() # the DIRs, absolute
+for d in ${pydirs[@]+"${pydirs[@]}"}; do
+  [ -n "$d" ] || die "empty python directory name"
+  [ -e "$d" ] || die "python directory not found: $d"
+  [ -d "$d" ] || die "python directory is not a directory: $d"
+  [ -r "$d" ] && [ -x "$d" ] || die "python directory is not readable: $d"
+  abs=$(readlink -f "$d")
+  case $abs in *:*) die "python directory has a ':' in its path (PYTHONPATH cannot hold it): $d" ;; esac
+  [ "$abs" != / ] || die "python directory cannot be /: $d"
+  name=$(basename "$abs")
+  [ -z "${pyseen[$name]+x}" ] || die "two python directories named $name: ${pyseen[$name]} and $d"
+  pyseen[$name]=$d
+  pypath+=("$abs")
+done
 limit=${HARNESS_TIMEOUT:-480}
 case $limit in
   '' | *[!0-9]*) die "HARNESS_TIMEOUT must be a whole number of seconds, not '$limit'" ;;
@@ -85,6 +130,13 @@ esac
 [ ${#limit} -le 6 ] && [ $((10#$limit)) -ge 1 ] ||
   die "HARNESS_TIMEOUT must be between 1 and 999999 seconds, not '$limit'"
 limit=$((10#$limit))
+if [ ${#pypath[@]} -gt 0 ]; then
+  [ -x /usr/bin/python3 ] || { echo "harness: /usr/bin/python3 not found (run scripts/setup.sh as root)"; exit 1; }
+  for p in python3-can python3-pytest; do
+    [ "$(dpkg-query -W -f='${db:Status-Abbrev}' "$p" 2>/dev/null)" = "ii " ] ||
+      { echo "harness: $p is not installed (run scripts/setup.sh as root)"; exit 1; }
+  done
+fi
 
 mkdir -p "$work" || die "cannot create the work directory $work"
 work=$(readlink -f "$work")
@@ -117,6 +169,21 @@ if [ "$(id -u)" -eq 0 ] && ip link add dev vcan0 type vcan 2>/dev/null; then
   ip link set vcan0 up
   echo "harness: vcan0 on this kernel"
   for b in "$@"; do PATH="$(dirname "$(readlink -f "$b")"):$PATH"; done
+  if [ ${#pypath[@]} -gt 0 ]; then # Debian's python3 first on PATH, the DIRs themselves on PYTHONPATH
+    mkdir -p "$work/python-bin"
+    ln -sfn /usr/bin/python3 "$work/python-bin/python3"
+    PATH="$work/python-bin:$PATH"
+    PYTHONPATH=$(IFS=:; echo "${pypath[*]}")
+    export PYTHONPATH PYTHONDONTWRITEBYTECODE=1 PYTHONNOUSERSITE=1 PY_COLORS=0
+    unset PYTHONHOME
+    t0=$(date +%s.%N)
+    if "$work/python-bin/python3" -c 'import can, pytest'; then
+      t1=$(date +%s.%N)
+      echo "figure: python3 -c 'import can, pytest': $(awk "BEGIN{printf \"%.2f\", $t1 - $t0}") s"
+    else
+      echo "harness: python3 cannot import can and pytest"
+    fi
+  fi
   export PATH
   run="$work/run"
   trace="$work/scenario.trace"
@@ -194,7 +261,7 @@ mods=$(ls -d "$kdir"/lib/modules/*/kernel)
 # The initramfs: busybox, the four CAN modules, the binaries with their shared libraries, the data
 # files in /tmp (the scenario's working directory).
 root="$work/root"
-rm -rf "$root"
+rm -rf "$root" "$work/pyroot" "$work/initrd-python.img" # the last two: a run with --python
 mkdir -p "$root"/{bin,proc,sys,dev,tmp,mods}
 cp "$(command -v busybox)" "$root/bin/busybox"
 for a in sh mount insmod ip sleep cat echo poweroff ls grep kill pidof head tail wc sed awk date seq cut \
@@ -211,6 +278,78 @@ for b in "$@" /usr/bin/cansend /usr/bin/candump; do
   done
 done
 for f in ${files[@]+"${files[@]}"}; do cp "$f" "$root/tmp/"; done
+if [ ${#pypath[@]} -gt 0 ]; then
+  # Python (only with --python), in an archive of its own ahead of the gzipped one: Debian's
+  # interpreter; its standard library less what a test never needs; the files dpkg lists in
+  # /usr/lib/python3/dist-packages for python3-can, python3-pytest and, recursively, each installed
+  # python3-* package their Depends name (an alternative not installed is one the interpreter
+  # satisfies); Debian's compiled .pyc beside each source.  cpio keeps the mtimes (in the archive
+  # too, and the kernel sets them), so the .pyc stay valid and nothing is compiled under TCG.
+  t_py=$(date +%s.%N)
+  pyroot="$work/pyroot"
+  rm -rf "$pyroot"
+  mkdir -p "$pyroot"
+  py_real=$(readlink -f /usr/bin/python3) # /usr/bin/python3.11
+  py_name=$(basename "$py_real")
+  py_tag=cpython-$(echo "${py_name#python}" | tr -d .) # the .pyc tag, cpython-311
+  py_lib=usr/lib/$py_name
+  declare -A py_got=()
+  py_todo=(python3-can python3-pytest)
+  while [ ${#py_todo[@]} -gt 0 ]; do
+    p=${py_todo[0]}
+    py_todo=("${py_todo[@]:1}")
+    [ -z "${py_got[$p]+x}" ] || continue
+    py_got[$p]=1
+    for d in $(dpkg-query -W -f='${Depends}' "$p" | tr ',|' '\n\n' |
+               awk '$1 ~ /^python3-/ {sub(/:.*/, "", $1); print $1}'); do
+      [ "$(dpkg-query -W -f='${db:Status-Abbrev}' "$d" 2>/dev/null)" != "ii " ] || py_todo+=("$d")
+    done
+  done
+  {
+    (cd / && find "$py_lib" \( -path "$py_lib/test" -o -path "$py_lib/idlelib" \
+        -o -path "$py_lib/tkinter" -o -path "$py_lib/turtledemo" -o -path "$py_lib/lib2to3" \
+        -o -path "$py_lib/ensurepip" -o -path "$py_lib/pydoc_data" -o -path "$py_lib/distutils" \
+        -o -path "$py_lib/config-*" -o -path "$py_lib/dist-packages" -o -path "$py_lib/site-packages" \) \
+        -prune \
+      -o \( -name 'turtle.*' -o -path "$py_lib/sitecustomize.py" -o -path "$py_lib/lib-dynload/_tkinter.*" \
+        -o -path "$py_lib/lib-dynload/_test*" -o -path "$py_lib/lib-dynload/_ctypes_test.*" \
+        -o -path "$py_lib/lib-dynload/_xxtestfuzz.*" -o -path "$py_lib/lib-dynload/xxlimited*" \
+        -o -path "$py_lib/lib-dynload/nis.*" \) \
+      -o \( -type f -o -type l \) -print)
+    dpkg -L "${!py_got[@]}" | while read -r f; do
+      case $f in /usr/lib/python3/dist-packages/*) ;; *) continue ;; esac
+      [ -f "$f" ] || [ -L "$f" ] || continue
+      echo "${f#/}"
+      case $f in
+        *.py) pyc="${f%/*}/__pycache__/${f##*/}" && pyc="${pyc%.py}.$py_tag.pyc"
+              [ ! -f "$pyc" ] || echo "${pyc#/}" ;;
+      esac
+    done
+  } | (cd / && cpio -pdm --quiet "$pyroot")
+  mkdir -p "$pyroot/usr/bin"
+  cp -p "$py_real" "$pyroot/usr/bin/$py_name"
+  ln -s "$py_name" "$pyroot/usr/bin/python3"
+  mkdir -p "$pyroot/py"
+  vm_pypath=
+  for d in "${pypath[@]}"; do
+    cp -a "$d" "$pyroot/py/"
+    vm_pypath=$vm_pypath${vm_pypath:+:}/py/$(basename "$d")
+  done
+  # The shared libraries of the interpreter and of every extension module (the trees' too), but
+  # those of the binaries, which are in the other archive.
+  for lib in $(ldd "$py_real" $(find "$pyroot" -name '*.so' -type f) 2>/dev/null |
+                 awk '/=>/{print $3} /^\t\/lib/{print $1}' | sort -u); do
+    [ -e "$root$lib" ] || [ -e "$pyroot$lib" ] && continue
+    mkdir -p "$pyroot$(dirname "$lib")"
+    cp -L "$lib" "$pyroot$lib"
+  done
+  quote() { printf "'%s'" "$(printf %s "$1" | sed "s/'/'\\\\''/g")"; }
+  printf 'export PYTHONPATH=%s PYTHONDONTWRITEBYTECODE=1 PYTHONNOUSERSITE=1 PY_COLORS=0\n' \
+    "$(quote "$vm_pypath")" >"$pyroot/python.conf"
+  py_pkgs=$(printf '%s\n' "${!py_got[@]}" | sort | tr '\n' ' ')
+  echo "figure: Python for the VM: ${#py_got[@]} packages (${py_pkgs% }), $(du -sm "$pyroot" | cut -f1) MB," \
+    "staged in $(awk "BEGIN{printf \"%.1f\", $(date +%s.%N) - $t_py}") s"
+fi
 cp "$scenario" "$root/scenario.sh"
 printf 'limit=%d\n' "$limit" >"$root/harness.conf"
 printf "trace_ps4='%s'\n" "$PS4_TRACE" >>"$root/harness.conf"
@@ -224,6 +363,20 @@ ip link add dev vcan0 type vcan && ip link set vcan0 up
 . /harness.conf
 echo "=== scenario begin"
 echo "figure: VM boot, kernel start to scenario: $(cut -d' ' -f1 /proc/uptime) s"
+INIT
+if [ ${#pypath[@]} -gt 0 ]; then
+  cat >>"$root/init" <<'INIT'
+. /python.conf
+t0=$(cut -d' ' -f1 /proc/uptime)
+if python3 -c 'import can, pytest'; then
+  t1=$(cut -d' ' -f1 /proc/uptime)
+  echo "figure: VM python3 -c 'import can, pytest': $(awk "BEGIN{printf \"%.2f\", $t1 - $t0}") s"
+else
+  echo "harness: python3 cannot import can and pytest in the VM"
+fi
+INIT
+fi
+cat >>"$root/init" <<'INIT'
 cd /tmp
 # The scenario and its watchdog lead process groups of their own; the trace goes to fd 9.
 exec 3<&0
@@ -249,17 +402,27 @@ poweroff -f
 INIT
 chmod +x "$root/init"
 (cd "$root" && find . | cpio -o -H newc 2>/dev/null | gzip >"$work/initrd.gz")
+initrd="$work/initrd.gz"
+if [ ${#pypath[@]} -gt 0 ]; then
+  # Uncompressed (the kernel copies it faster under TCG than it would gunzip it), first (cpio pads
+  # it to 512 bytes, so the gzipped archive after it starts aligned), then the gzipped one.
+  t_rd=$(date +%s.%N)
+  initrd="$work/initrd-python.img"
+  { (cd "$pyroot" && find . | cpio -o -H newc 2>/dev/null); cat "$work/initrd.gz"; } >"$initrd"
+  echo "figure: initramfs with Python $(du -k "$initrd" | cut -f1) KiB (the gzipped part" \
+    "$(du -k "$work/initrd.gz" | cut -f1) KiB), packed in $(awk "BEGIN{printf \"%.1f\", $(date +%s.%N) - $t_rd}") s"
+fi
 
 # QEMU's own limit stays above the scenario's, so that a time-out inside the VM gets reported.
 t0=$(date +%s.%N)
 if [ -n "${HARNESS_LIVE:-}" ]; then
   # Live: the scenario's output as it happens (progress bars included).
   timeout $((limit + 120)) qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$vmlinuz" \
-    -initrd "$work/initrd.gz" -append "console=ttyS0 quiet panic=-1" 2>&1 | tee "$work/console.log" |
+    -initrd "$initrd" -append "console=ttyS0 quiet panic=-1" 2>&1 | tee "$work/console.log" |
     sed -u -n '/=== scenario begin/,/=== scenario end/{/=== scenario/d;p}'
 else
   timeout $((limit + 120)) qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$vmlinuz" \
-    -initrd "$work/initrd.gz" -append "console=ttyS0 quiet panic=-1" >"$work/console.log" 2>&1
+    -initrd "$initrd" -append "console=ttyS0 quiet panic=-1" >"$work/console.log" 2>&1
 fi
 t1=$(date +%s.%N)
 [ -n "${HARNESS_LIVE:-}" ] || sed -n '/=== scenario begin/,/=== scenario end/p' "$work/console.log" | sed '1d;$d' | tr -d '\r'
