@@ -1,7 +1,8 @@
 /* The C side of tse.kin (python/tse/kin.py): what libtse_kin.so exports, nothing else.
  *
  * Promise: every entry point works on the caller's arrays (C order, doubles in, doubles and ints
- * out), keeps no state between calls and allocates nothing.  A design is passed as
+ * out), keeps no state between calls and allocates nothing (tse_py_ik and tse_py_fk may start
+ * threads for a large batch, and have joined them when they return).  A design is passed as
  * v[TSE_PY_NPARAMS], the parameters in the order of tse_param_id (v[0] = L, v[1] = k1, ...,
  * v[10] = nu_min) in SI units and radians; each batch call validates it with the build's own
  * tse_geometry_init (after rounding to that build's precision, as tse-kin does) and returns the
@@ -58,14 +59,17 @@ TSE_PY_API int tse_py_check(const double v[TSE_PY_NPARAMS]);
 /* Inverse kinematics of poses[n][6].  seed: NULL (home), one seed q (seed_stride 0) or one per row
  * (seed_stride 6).  warm: a row after one that came back ok is seeded with that row's slides (in
  * the build's precision), as a controller stepping along a path; the others with their seed.
+ * threads: at most that many threads, the calling thread one of them (1 or less: the calling
+ * thread only); a warm batch, or one of fewer than 4096 rows, runs on the calling thread.  The
+ * answers do not depend on it.
  * Out: status[n], scissor[n] (0 when ok), q[n][6] (the library's slides, NaN where none). */
 TSE_PY_API int tse_py_ik(const double v[TSE_PY_NPARAMS], long n, const double *poses, const double *seed,
-                         long seed_stride, int warm, int *status, int *scissor, double *q);
+                         long seed_stride, int warm, int threads, int *status, int *scissor, double *q);
 
-/* Forward kinematics of q[n][6], seeds as tse_py_ik's (poses; warm: the last ok pose).  Out:
- * status[n], scissor[n], pose[n][6] (NaN unless ok, as tse-kin prints it). */
+/* Forward kinematics of q[n][6], seeds and threads as tse_py_ik's (poses; warm: the last ok
+ * pose).  Out: status[n], scissor[n], pose[n][6] (NaN unless ok, as tse-kin prints it). */
 TSE_PY_API int tse_py_fk(const double v[TSE_PY_NPARAMS], long n, const double *q, const double *seed,
-                         long seed_stride, int warm, int *status, int *scissor, double *pose);
+                         long seed_stride, int warm, int threads, int *status, int *scissor, double *pose);
 
 /* tse-kin jacobian: the slides from home, then dq/dp (J[n][6][6], rows s_a1..s_b3, columns
  * x..yaw) and the singular values of dp/dq, descending (sv[n][6]); NaN unless ok. */

@@ -1,7 +1,11 @@
+#define _POSIX_C_SOURCE 200809L /* pthread_sigmask */
 /* The batch entry points of libtse_kin.so, compiled once per precision: see tse_py.h. */
 #define TSE_PY_BATCH
 #include "tse_py.h"
 
+#include <pthread.h>
+#include <signal.h>
+#include <stdatomic.h>
 #include <string.h>
 
 #include "tse/fk.h"
@@ -63,52 +67,135 @@ static const tse_real *seed_of(long i, const double *seed, long stride, int have
     return buf;
 }
 
-int tse_py_ik(const double v[TSE_PY_NPARAMS], long n, const double *poses, const double *seed, long seed_stride,
-              int warm, int *status, int *scissor, double *q)
+/* One ik or fk call: its arrays, shared read-only by the threads, each writing its own rows. */
+typedef struct {
+    const tse_geometry *g;
+    const double *in, *seed;
+    long seed_stride;
+    int warm;
+    int *status, *scissor;
+    double *out;
+} batch;
+
+typedef void (*rows_fn)(const batch *b, long begin, long end);
+
+/* Rows [begin, end) of an ik call.  Warm, the rows run from 0 in one piece (see run_rows). */
+static void ik_rows(const batch *b, long begin, long end)
 {
-    tse_geometry g;
-    const int bad = geometry_of(v, &g);
-    if (bad != TSE_PARAM_OK)
-        return bad;
     tse_real last[6], buf[6], p[6];
     int have_last = 0;
-    for (long i = 0; i < n; ++i) {
-        to_real(poses + 6 * i, p, 6);
+    for (long i = begin; i < end; ++i) {
+        to_real(b->in + 6 * i, p, 6);
         tse_ik_result r;
-        const tse_status st = tse_ik(&g, p, seed_of(i, seed, seed_stride, have_last, last, buf), &r);
-        status[i] = (int)st;
-        scissor[i] = st == TSE_OK ? 0 : r.scissor;
-        to_double(r.q, q + 6 * i, 6);
-        if (warm && st == TSE_OK) {
+        const tse_status st = tse_ik(b->g, p, seed_of(i, b->seed, b->seed_stride, have_last, last, buf), &r);
+        b->status[i] = (int)st;
+        b->scissor[i] = st == TSE_OK ? 0 : r.scissor;
+        to_double(r.q, b->out + 6 * i, 6);
+        if (b->warm && st == TSE_OK) {
             memcpy(last, r.q, sizeof last);
             have_last = 1;
         }
     }
-    return TSE_PARAM_OK;
 }
 
-int tse_py_fk(const double v[TSE_PY_NPARAMS], long n, const double *q, const double *seed, long seed_stride,
-              int warm, int *status, int *scissor, double *pose)
+static void fk_rows(const batch *b, long begin, long end)
+{
+    tse_real last[6], buf[6], qq[6];
+    int have_last = 0;
+    for (long i = begin; i < end; ++i) {
+        to_real(b->in + 6 * i, qq, 6);
+        tse_fk_result r;
+        const tse_status st = tse_fk(b->g, qq, seed_of(i, b->seed, b->seed_stride, have_last, last, buf), &r);
+        b->status[i] = (int)st;
+        b->scissor[i] = st == TSE_OK ? 0 : r.scissor;
+        for (int k = 0; k < 6; ++k)
+            b->out[6 * i + k] = st == TSE_OK ? (double)r.pose[k] : (double)NAN;
+        if (b->warm && st == TSE_OK) {
+            memcpy(last, r.pose, sizeof last);
+            have_last = 1;
+        }
+    }
+}
+
+/* Threads.  A cold batch's rows are independent (a row's answer depends on its pose and seed
+ * only), so they are shared out in contiguous blocks of TSE_PY_BLOCK rows, each thread (the
+ * calling thread one of them) taking the next block nobody has taken until none is left: rows
+ * differ in cost (an unreachable pose costs several reachable ones, and a grid puts them
+ * together) and a thread may get less of a busy machine than another, so fixed shares would
+ * leave threads idle while one still works.  Each row is computed by the same code from the same
+ * inputs as on one thread, so the answers do not depend on the thread count or on who took which
+ * block.  A warm batch seeds each row with the last ok row before it: it runs in one piece on the
+ * calling thread, as does a batch of fewer than TSE_PY_PARALLEL_MIN rows.  Thread stacks and
+ * handles are all that is taken, and released before returning; a thread that cannot be started
+ * is simply not there to take blocks. */
+enum { TSE_PY_BLOCK = 1024, TSE_PY_PARALLEL_MIN = 4096, TSE_PY_MAX_THREADS = 64 };
+
+typedef struct {
+    rows_fn fn;
+    const batch *b;
+    long n;
+    atomic_long next; /* the first row of the next block nobody has taken */
+} shared_rows;
+
+static void *take_blocks(void *arg)
+{
+    shared_rows *w = arg;
+    for (;;) {
+        const long begin = atomic_fetch_add(&w->next, TSE_PY_BLOCK);
+        if (begin >= w->n)
+            return NULL;
+        w->fn(w->b, begin, begin + TSE_PY_BLOCK < w->n ? begin + TSE_PY_BLOCK : w->n);
+    }
+}
+
+static void run_rows(rows_fn fn, const batch *b, long n, int threads)
+{
+    long t = threads < TSE_PY_MAX_THREADS ? threads : TSE_PY_MAX_THREADS;
+    if (b->warm || n < TSE_PY_PARALLEL_MIN || t <= 1) {
+        fn(b, 0, n);
+        return;
+    }
+    const long blocks = (n + TSE_PY_BLOCK - 1) / TSE_PY_BLOCK;
+    if (t > blocks)
+        t = blocks;
+    shared_rows w = {.fn = fn, .b = b, .n = n};
+    atomic_init(&w.next, 0);
+    pthread_t tid[TSE_PY_MAX_THREADS];
+    long started = 0;
+    /* The workers take no signals: they stay with the interpreter's threads. */
+    sigset_t all, old;
+    sigfillset(&all);
+    const int masked = pthread_sigmask(SIG_SETMASK, &all, &old) == 0;
+    while (started < t - 1 && pthread_create(&tid[started], NULL, take_blocks, &w) == 0)
+        ++started;
+    if (masked)
+        pthread_sigmask(SIG_SETMASK, &old, NULL);
+    take_blocks(&w);
+    for (long k = 0; k < started; ++k)
+        pthread_join(tid[k], NULL);
+}
+
+int tse_py_ik(const double v[TSE_PY_NPARAMS], long n, const double *poses, const double *seed, long seed_stride,
+              int warm, int threads, int *status, int *scissor, double *q)
 {
     tse_geometry g;
     const int bad = geometry_of(v, &g);
     if (bad != TSE_PARAM_OK)
         return bad;
-    tse_real last[6], buf[6], qq[6];
-    int have_last = 0;
-    for (long i = 0; i < n; ++i) {
-        to_real(q + 6 * i, qq, 6);
-        tse_fk_result r;
-        const tse_status st = tse_fk(&g, qq, seed_of(i, seed, seed_stride, have_last, last, buf), &r);
-        status[i] = (int)st;
-        scissor[i] = st == TSE_OK ? 0 : r.scissor;
-        for (int k = 0; k < 6; ++k)
-            pose[6 * i + k] = st == TSE_OK ? (double)r.pose[k] : (double)NAN;
-        if (warm && st == TSE_OK) {
-            memcpy(last, r.pose, sizeof last);
-            have_last = 1;
-        }
-    }
+    const batch b = {&g, poses, seed, seed_stride, warm, status, scissor, q};
+    run_rows(ik_rows, &b, n, threads);
+    return TSE_PARAM_OK;
+}
+
+int tse_py_fk(const double v[TSE_PY_NPARAMS], long n, const double *q, const double *seed, long seed_stride,
+              int warm, int threads, int *status, int *scissor, double *pose)
+{
+    tse_geometry g;
+    const int bad = geometry_of(v, &g);
+    if (bad != TSE_PARAM_OK)
+        return bad;
+    const batch b = {&g, q, seed, seed_stride, warm, status, scissor, pose};
+    run_rows(fk_rows, &b, n, threads);
     return TSE_PARAM_OK;
 }
 

@@ -13,6 +13,9 @@ the library (the build of the precision asked for).
     r = kin.ik(np.array([[0.1, -0.05, 1.1, 0.1, -0.05, 0.2]]))
     r.status[0] == kin.Status.OK, r.q[0]          # slides s_a1, s_b1, ..., s_b3 [m]
 
+ik and fk run a large batch on several threads (threads=None: one per CPU) with the GIL released;
+the answers do not depend on the thread count.
+
 The library is found at $TSE_KIN_LIB, next to this package (an installed copy), or in a build
 directory (build/host/python/libtse_kin.so beside the source tree's python/).
 """
@@ -75,8 +78,8 @@ _fn = {}
 for _prec, _suf in _PRECISIONS.items():
     _fn[_prec] = {
         "check": _sig("tse_py_check" + _suf, _c_int, _dp),
-        "ik": _sig("tse_py_ik" + _suf, _c_int, _dp, _c_long, _dp, _dp, _c_long, _c_int, _ip, _ip, _dp),
-        "fk": _sig("tse_py_fk" + _suf, _c_int, _dp, _c_long, _dp, _dp, _c_long, _c_int, _ip, _ip, _dp),
+        "ik": _sig("tse_py_ik" + _suf, _c_int, _dp, _c_long, _dp, _dp, _c_long, _c_int, _c_int, _ip, _ip, _dp),
+        "fk": _sig("tse_py_fk" + _suf, _c_int, _dp, _c_long, _dp, _dp, _c_long, _c_int, _c_int, _ip, _ip, _dp),
         "jacobian": _sig("tse_py_jacobian" + _suf, _c_int, _dp, _c_long, _dp, _ip, _ip, _dp, _dp),
         "haf": _sig("tse_py_haf" + _suf, _c_int, _dp, _c_long, _dp, _ip, _dp),
         "sigma_z": _sig("tse_py_sigma_z" + _suf, _c_int, _dp, _c_long, _dp, _ip, _dp),
@@ -242,6 +245,18 @@ def _seed(seed, n, warm):
     raise ValueError(f"seed: None, one row of 6 or an ({n}, 6) array, got shape {s.shape}")
 
 
+_MAX_THREADS = 64  # tse_py_batch.c's limit (TSE_PY_MAX_THREADS): no more are started
+
+
+def _threads(threads):
+    """The thread count for the library: None is os.cpu_count(), else a whole number >= 1."""
+    if threads is None:
+        return min(os.cpu_count() or 1, _MAX_THREADS)
+    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1:
+        raise ValueError(f"threads: None (one per CPU) or a whole number >= 1, not {threads!r}")
+    return int(min(threads, _MAX_THREADS))
+
+
 def _call(fns, name, params, precision, *args):
     bad = fns[name](params._v, *args)
     if bad:
@@ -262,39 +277,47 @@ JacobianResult.__doc__ = """J: (N, 6, 6) dq/dp (rows s_a1..s_b3, columns x..yaw)
 dp/dq, descending; NaN unless ok."""
 
 
-def ik(poses, seed=None, params=None, precision="double", warm=False):
+def ik(poses, seed=None, params=None, precision="double", warm=False, threads=None):
     """Inverse kinematics of poses (N, 6): x, y, z [m], roll, pitch, yaw [rad], R = Rz Ry Rx.
 
     seed: None (every row from the home configuration, as `tse-kin ik`), one slide vector (6,)
     for every row, or one per row (N, 6).  warm=True: a row after one that came back ok is seeded
     with that row's slides, as a controller stepping along a path (the first row, and rows after a
-    failure, with `seed`).  Returns IKResult(status, scissor, q)."""
-    fns, params = _fns(precision), _params(params)
+    failure, with `seed`).
+    threads: how many threads the library may use, None for os.cpu_count(), 1 for the calling
+    thread only.  Rows are cut into contiguous chunks, one per thread; a batch of fewer than 4096
+    rows, and a warm batch (each row waits for the one before it), run on the calling thread.  The
+    answers are the same whatever the count.  The GIL is released during the computation (ctypes
+    releases it around every call into the library), so other Python threads run meanwhile.
+    Returns IKResult(status, scissor, q)."""
+    fns, params, nthreads = _fns(precision), _params(params), _threads(threads)
     p = _rows(poses, "poses")
     n = p.shape[0]
     sp, stride, keep = _seed(seed, n, warm)
     status = np.empty(n, dtype=np.intc)
     scissor = np.empty(n, dtype=np.intc)
     q = np.empty((n, 6), dtype=np.float64)
-    _call(fns, "ik", params, precision, n, _p(p), sp, stride, int(bool(warm)), _p(status, _ip), _p(scissor, _ip),
-          _p(q))
+    _call(fns, "ik", params, precision, n, _p(p), sp, stride, int(bool(warm)), nthreads, _p(status, _ip),
+          _p(scissor, _ip), _p(q))
     del keep
     return IKResult(status, scissor, q)
 
 
-def fk(q, seed=None, params=None, precision="double", warm=False):
+def fk(q, seed=None, params=None, precision="double", warm=False, threads=None):
     """Forward kinematics of slides q (N, 6).  seed: None (the home pose), one pose (6,) or one per
-    row (N, 6); warm=True seeds a row after an ok one with that row's pose.  The library checks
+    row (N, 6); warm=True seeds a row after an ok one with that row's pose.  threads as in ik():
+    None for os.cpu_count(), 1 for the calling thread only; warm batches and batches of fewer than
+    4096 rows run on the calling thread; the answers do not depend on it.  The library checks
     its answer with the inverse kinematics: pose is NaN unless status is ok.  Returns FKResult."""
-    fns, params = _fns(precision), _params(params)
+    fns, params, nthreads = _fns(precision), _params(params), _threads(threads)
     a = _rows(q, "q")
     n = a.shape[0]
     sp, stride, keep = _seed(seed, n, warm)
     status = np.empty(n, dtype=np.intc)
     scissor = np.empty(n, dtype=np.intc)
     pose = np.empty((n, 6), dtype=np.float64)
-    _call(fns, "fk", params, precision, n, _p(a), sp, stride, int(bool(warm)), _p(status, _ip), _p(scissor, _ip),
-          _p(pose))
+    _call(fns, "fk", params, precision, n, _p(a), sp, stride, int(bool(warm)), nthreads, _p(status, _ip),
+          _p(scissor, _ip), _p(pose))
     del keep
     return FKResult(status, scissor, pose)
 
