@@ -1,0 +1,142 @@
+"""tse.can against tse-sim on vcan0 (run by tests/vcan/python_can.sh in the vcan harness, which
+starts the simulator with its log in $TSE_SIM_LOG).  The tests run in file order on one simulated
+robot, as a user's session would: enable, home, a move checked to 10 um by the simulator's plant,
+an unreachable pose refused with nothing moving, a short trajectory, parameters, e-stop, the
+watchdog on a killed heartbeat, and a motion stopped by leaving a with-block."""
+import os
+import re
+import time
+
+import pytest
+
+from tse import can as tcan
+
+SIM_LOG = os.environ.get("TSE_SIM_LOG", "sim.log")
+
+
+def sim_log():
+    with open(SIM_LOG) as f:
+        return f.read()
+
+
+def motions():
+    return sim_log().count("motion accepted")
+
+
+def plant_at_rest():
+    """The plate pose of the simulator's plant (its own forward kinematics of the slides it was
+    stepped to) at its latest 'at rest' line."""
+    rest = re.findall(r"at rest: plate (\S+) (\S+) (\S+) m, (\S+) (\S+) (\S+) rad", sim_log())
+    assert rest, "the simulator reported no rest"
+    return [float(v) for v in rest[-1]]
+
+
+def assert_near(pose, target, pos_tol=10e-6, ang_tol=1e-5):
+    dp = max(abs(a - b) for a, b in zip(pose[:3], target[:3]))
+    da = max(abs(a - b) for a, b in zip(pose[3:], target[3:]))
+    print(f"pose error {dp * 1e6:.2f} um, {da * 1e6:.2f} urad")
+    assert dp <= pos_tol and da <= ang_tol, f"{pose} is not {target}"
+
+
+@pytest.fixture(scope="module")
+def ctl():
+    with tcan.Controller("vcan0", node=1, timeout=5.0) as c:
+        yield c
+
+
+def test_enable_and_home(ctl):
+    st = ctl.status()
+    if st.state != "disabled":
+        # README's session ran first and ended its heartbeat with the drives on: the watchdog.
+        assert (st.state, st.fault) == ("fault", "watchdog")
+        ctl.clear()
+    ctl.enable()
+    ctl.home(wait=True)
+    st = ctl.status()
+    assert (st.state, st.fault, st.homed, st.enabled) == ("idle", "none", True, True)
+
+
+def test_move_to_10_um(ctl):
+    target = [0.1, -0.05, 1.1, 0.1, -0.05, 0.2]
+    planned = ctl.move(target, duration=1.0)
+    assert planned >= 1.0
+    assert_near(plant_at_rest(), target)
+    tel = next(ctl.watch(timeout=2.0))
+    assert_near(tel.pose, target)
+    assert tel.state == "idle" and len(tel.slides) == 6
+
+
+def test_unreachable_pose_is_rejected_and_nothing_moves(ctl):
+    before = motions()
+    with pytest.raises(tcan.Rejected) as e:
+        ctl.move([0.8, 0, 1.0, 0, 0, 0], duration=1.0)
+    r = e.value
+    print(r)
+    assert (r.command, r.reason) == ("MOVE_COMMIT", "kinematics")
+    assert r.scissor in (1, 2, 3) and r.status in ("unreachable", "alpha", "stroke", "below", "singular")
+    assert 0.0 < r.fraction <= 1.0
+    assert str(r).startswith(f"rejected: kinematics: MOVE_COMMIT: scissor {r.scissor} is {r.status} at ")
+    time.sleep(0.3)
+    assert motions() == before and ctl.status().state == "idle"
+
+
+def test_short_trajectory_with_progress(ctl):
+    start = plant_at_rest()
+    n, rows, seen = 100, [], []
+    for i in range(1, n + 1):
+        s = i / n
+        e = s * s * s * (10 - 15 * s + 6 * s * s)  # minimum-jerk easing
+        rows.append((0.5 + 0.02 * i, start[0] + 0.02 * e, start[1] - 0.01 * e, *start[2:]))
+    ctl.trajectory(rows, progress=lambda sent, total: seen.append((sent, total)))
+    assert seen[-1] == (n, n) and [s for s, _ in seen] == list(range(1, n + 1))
+    assert_near(plant_at_rest(), rows[-1][1:])
+    assert ctl.status().queue_depth == 0
+
+
+def test_parameters(ctl):
+    assert ctl.params["slide_vmax"] > 0
+    assert abs(ctl.params["eta_deg"] - ctl.params["eta"] * 180 / 3.141592653589793) < 1e-9
+    with pytest.raises(tcan.Rejected, match="rejected: state: PARAM_SET is not taken while the controller is idle"):
+        ctl.params["plate_vmax"] = 0.2
+    with pytest.raises(ValueError, match="outside"):
+        ctl.params["watchdog_ms"] = 70000
+
+
+def test_estop_latches_and_clears(ctl):
+    ctl.estop()
+    st = ctl.status()
+    assert (st.state, st.fault, st.enabled) == ("estop", "estop", False)
+    with pytest.raises(tcan.Rejected) as e:
+        ctl.move([0.0, 0.0, 1.2, 0, 0, 0])
+    assert e.value.reason == "state" and e.value.state == "estop"
+    ctl.clear()
+    st = ctl.status()
+    # Steps may have been lost in the abrupt stop: the zero is gone until the next homing.
+    assert (st.state, st.fault, st.homed) == ("disabled", "none", False)
+    assert ctl.params.set("watchdog_ms", 400) == 400  # disabled: parameters may change
+
+
+def test_watchdog_on_a_killed_heartbeat(ctl):
+    ctl.enable()
+    assert ctl.heartbeat_running
+    ctl.stop_heartbeat()
+    time.sleep(1.0)  # watchdog_ms 400
+    st = ctl.status()
+    assert (st.state, st.fault) == ("fault", "watchdog")
+    ctl.start_heartbeat()
+    ctl.clear()
+    ctl.enable()
+    ctl.home(wait=True)
+    st = ctl.status()
+    assert (st.state, st.fault, st.homed) == ("idle", "none", True)
+
+
+def test_leaving_the_with_block_stops_the_robot(ctl):
+    before = motions()
+    with tcan.Controller("vcan0", node=1, timeout=5.0) as other:
+        other.move([0.0, 0.0, 1.3, 0, 0, 0], duration=20.0, wait=False)
+        time.sleep(0.5)
+        assert other.status().state == "moving"
+    assert motions() == before + 1
+    st = ctl.status()
+    assert st.state == "idle" and st.fault == "none", "the motion was stopped and waited for on exit"
