@@ -155,3 +155,10 @@ def test_silence_is_a_timeout_and_the_heartbeat_beats(quiet_controller):
     beats = [tcan.decode(f, "to_controller") for f in rec.frames]
     assert n >= 3 and len(rec.frames) == n, "the heartbeat beats every 100 ms and stops when told"
     assert [b[2]["counter"] for b in beats] == list(range(n)) and {b[:2] for b in beats} == {("HOST_HEARTBEAT", 3)}
+
+
+def test_a_bus_that_cannot_be_opened_is_named():
+    with pytest.raises(tcan.TseError, match=r"cannot open CAN channel 'tse-no-such-bus' \(socketcan\)"):
+        tcan.Controller("tse-no-such-bus", node=1)
+    with pytest.raises(ValueError, match="node 0 is not 1..15"):
+        tcan.Controller("vcan0", node=0)

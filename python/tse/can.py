@@ -326,7 +326,12 @@ class Controller:
         self.timeout = float(timeout)
         self._own_bus = bus is None
         filters = [{"can_id": node, "can_mask": _P.NODE_MASK, "extended": False}]
-        self._bus = bus if bus is not None else _pycan.Bus(channel=channel, interface=interface, can_filters=filters)
+        if bus is None:
+            try:
+                bus = _pycan.Bus(channel=channel, interface=interface, can_filters=filters)
+            except (OSError, _pycan.CanError, ValueError, ImportError) as e:
+                raise TseError(f"cannot open CAN channel {channel!r} ({interface}): {e}") from e
+        self._bus = bus
         self._cond = threading.Condition()
         self._send_lock = threading.Lock()
         self._cmd_lock = threading.RLock()
