@@ -162,3 +162,15 @@ def test_a_bus_that_cannot_be_opened_is_named():
         tcan.Controller("tse-no-such-bus", node=1)
     with pytest.raises(ValueError, match="node 0 is not 1..15"):
         tcan.Controller("vcan0", node=0)
+
+
+def test_watch_ends_on_silence_and_on_close(quiet_controller):
+    import time
+    ctl, _ = quiet_controller
+    t0 = time.monotonic()
+    assert list(ctl.watch(timeout=0.3)) == []
+    assert time.monotonic() - t0 >= 0.3  # it waited the silence out, then ended
+    w = ctl.watch()
+    import threading
+    threading.Timer(0.3, ctl.close).start()
+    assert list(w) == []

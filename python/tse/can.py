@@ -703,16 +703,21 @@ class Controller:
 
     def watch(self, timeout=None, maxlen=1000):
         """An iterator of Telemetry, one per telemetry period, from now on.  It ends when none
-        has come for timeout s (None: never).  Up to maxlen periods wait while the caller is
+        has come for timeout s (None: never) or the controller is closed.  Up to maxlen periods wait while the caller is
         busy; beyond that the newest are dropped."""
         q = queue.Queue(maxsize=maxlen)
         self._watchers.append(q)
         try:
-            while True:
+            last = time.monotonic()
+            while not self._closed:  # a closed controller ends its watches
                 try:
-                    yield q.get(timeout=timeout)
+                    item = q.get(timeout=0.2)
                 except queue.Empty:
-                    return
+                    if timeout is not None and time.monotonic() - last > timeout:
+                        return
+                    continue
+                last = time.monotonic()
+                yield item
         finally:
             self._watchers.remove(q)
 
