@@ -298,10 +298,6 @@ def _pose_raw(pose):
     return raw
 
 
-def _dt_raw(t):
-    return _round_away(t * 1e6)
-
-
 # --- The controller ------------------------------------------------------------------------------
 
 class Controller:
@@ -510,17 +506,21 @@ class Controller:
             return None
         return self._wait_for(pick, self.timeout, f"answer to {message}")
 
+    def _exchange(self, message, **values):
+        """Sends MESSAGE and waits for its ACK or REJECT (the one carrying its seq, when it has
+        one).  Returns (mark, "ACK" or "REJECT", fields); mark dates what came after the send."""
+        mark = self._mark()
+        self._send(message, **values)
+        name, v = self._answer(mark, message, values.get("seq"))
+        return mark, name, v
+
     def _command(self, message, seq=None, **values):
         """Sends MESSAGE (with the next sequence number unless seq is given) and returns its ACK's
         fields; a REJECT raises Rejected."""
         with self._cmd_lock:
             if seq is None:
                 seq = (self._fresh_status().last_seq + 1) & 0xFF
-            if "seq" in _FIELDS[message]:
-                values["seq"] = seq
-            mark = self._mark()
-            self._send(message, **values)
-            name, v = self._answer(mark, message, seq if "seq" in _FIELDS[message] else None)
+            _mark, name, v = self._exchange(message, seq=seq, **values)
             if name == "REJECT":
                 raise Rejected(v)
             return v
@@ -575,12 +575,7 @@ class Controller:
     def estop(self):
         """Emergency stop, sent at once (no STATUS first): stepping is cut and an e-stop fault
         latches."""
-        with self._cmd_lock:
-            mark = self._mark()
-            self._send("ESTOP", seq=0)
-            name, v = self._answer(mark, "ESTOP", 0)
-            if name == "REJECT":
-                raise Rejected(v)
+        self._command("ESTOP", seq=0)
 
     def home(self, wait=True):
         """Homes the six slides, then goes to the home pose.  wait: until at rest (a homing
@@ -649,7 +644,7 @@ class Controller:
                 raise ValueError(f"row {i}: {e}") from None
             if not math.isfinite(t):
                 raise ValueError(f"row {i}: t = {r[0]!r} is not a finite time")
-            us = _dt_raw(t)
+            us = _round_away(t * 1e6)  # the wire's whole microseconds, as tsectl rounds them
             if not lo_dt <= us - prev_us <= hi_dt:
                 raise ValueError(f"row {i}: t = {t:g} s is {(us - prev_us) * 1e-6:g} s after the "
                                  f"{'previous row' if i else 'start'}; it must be {lo_dt * 1e-6:g} to {hi_dt * 1e-6:g} s")
@@ -679,9 +674,7 @@ class Controller:
                                 s.state, s.fault)
             dt, pose = plan[i]
             self._send_pose(seq, pose)
-            mark = self._mark()
-            self._send("TRAJ_COMMIT", seq=seq, dt=dt, flags=1 if i == n - 1 else 0)
-            name, v = self._answer(mark, "TRAJ_COMMIT", seq)
+            _mark, name, v = self._exchange("TRAJ_COMMIT", seq=seq, dt=dt, flags=1 if i == n - 1 else 0)
             seq = (seq + 1) & 0xFF
             if name == "REJECT":
                 if _enum("reason", v["reason"]) == "queue_full":
@@ -693,7 +686,7 @@ class Controller:
             if progress is not None:
                 progress(i, n)
         sent = time.monotonic() - t0
-        self._wait_rest(max(plan_end(plan) - sent, 0.1), "finishing")
+        self._wait_rest(max(sum(dt for dt, _ in plan) * 1e-6 - sent, 0.1), "finishing")
 
     def _stop_at_rest(self):
         try:
@@ -732,16 +725,10 @@ class Controller:
 
     def _param_exchange(self, message, **values):
         with self._cmd_lock:
-            mark = self._mark()
-            self._send(message, **values)
-            name, v = self._answer(mark, message, None)
+            mark, name, v = self._exchange(message, **values)
             if name == "REJECT":
                 raise Rejected(v)
             return self._param_value(mark, values["param"]) if "param" in values else None
-
-
-def plan_end(plan):
-    return sum(dt for dt, _ in plan) * 1e-6
 
 
 class _Params:
