@@ -21,6 +21,7 @@ enum { FK_MAX_ITER = 60 };
  * -yaw about z it reads (cos pitch droll, dpitch, dyaw - sin pitch droll).
  * Returns the squared length of the step in metres (rotation counted as r_top per radian), not
  * finite when the system is singular. */
+TSE_FMA_CLONES
 static tse_real fk_step(const tse_geometry *g, const tse_real q[6], const tse_real p[6], tse_real dp[6])
 {
     tse_pose_frame f;

@@ -2,6 +2,26 @@
 
 #include "kin_internal.h"
 
+#include <stdint.h>
+#include <string.h>
+
+/* The next representable value above (up) or below a finite x >= 0: its bits as an integer, plus
+ * or minus one (the board's build has no libm to call nextafterf from). */
+static tse_real next_real(tse_real x, int up)
+{
+#if defined(TSE_REAL_FLOAT) && TSE_REAL_FLOAT
+    uint32_t bits;
+#else
+    uint64_t bits;
+#endif
+    if (!up && x == TSE_R(0.0))
+        return x;
+    memcpy(&bits, &x, sizeof bits);
+    bits = up ? bits + 1u : bits - 1u;
+    memcpy(&x, &bits, sizeof bits);
+    return x;
+}
+
 tse_param_id tse_geometry_init(tse_geometry *g, const tse_params *p)
 {
     tse_param_id bad = tse_params_check(p);
@@ -19,6 +39,19 @@ tse_param_id tse_geometry_init(tse_geometry *g, const tse_params *p)
     /* w = 2 l0 cos(alpha) falls as alpha rises: the stops become a band on w, no acos needed. */
     g->w_hi = TSE_R(2.0) * g->l0 * tse_cos(p->alpha_min);
     g->w_lo = TSE_R(2.0) * g->l0 * tse_cos(p->alpha_max);
+    /* The rounded square root is monotone, so {x : sqrt(x) >= w_lo} is [w_lo2, inf) for one
+     * w_lo2 within an ulp or two of w_lo^2: found by stepping from the rounded square. */
+    tse_real lo2 = g->w_lo * g->w_lo, hi2 = g->w_hi * g->w_hi;
+    while (tse_sqrt(lo2) < g->w_lo)
+        lo2 = next_real(lo2, 1);
+    while (lo2 > TSE_R(0.0) && tse_sqrt(next_real(lo2, 0)) >= g->w_lo)
+        lo2 = next_real(lo2, 0);
+    while (hi2 > TSE_R(0.0) && tse_sqrt(hi2) > g->w_hi)
+        hi2 = next_real(hi2, 0);
+    while (tse_sqrt(next_real(hi2, 1)) <= g->w_hi)
+        hi2 = next_real(hi2, 1);
+    g->w_lo2 = lo2;
+    g->w_hi2 = hi2;
     /* Bounded Newton steps keep a cold start from jumping sheets (kinematics.md, solver notes). */
     g->step_max = TSE_R(0.1) * p->L;
     /* A solution has |CA| = |CB| >= w / 2, so F2 gives w <= 2 l0 and |CA| <= L; and

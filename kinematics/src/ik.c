@@ -18,10 +18,13 @@
  *     det[G | P] = -( (n_1.e_12)(n_2.e_23)(n_3.e_13) - (n_2.e_12)(n_1.e_13)(n_3.e_23) )
  *
  * (checked in exact rational arithmetic on random lines, and against the 6x6 elimination of
- * tse_hadamard_ratio by the kinematics tests).  Dividing n_i by the norms of its two rows and
- * scaling e_ij by s gives the ratio directly, with every factor of order one (no overflow or
- * underflow of the raw product of norms).  A gradient may be scaled freely: the ratio does not
- * depend on a row's length, so the gradients are taken at half the size of constraint_rows.
+ * tse_hadamard_ratio by the kinematics tests).  Scaling e_ij by s and dividing by the product of
+ * the six row norms gives the ratio; the norms are taken as one square root of the product of
+ * their squares (the square roots and divisions, not the multiplications, are what the solve
+ * waits on).  Each squared norm is at least the base width's square w_lo2, or |C - A|^2 on the
+ * physical sheet, and at most a few L^2, so the product of six neither overflows nor
+ * underflows, in float too.  A gradient may be scaled freely: the ratio does not depend on a
+ * row's length, so the gradients are taken at half the size of constraint_rows.
  *
  * With rho_i = s rc_i (a unit vector), a row's rotation part is (axis_k . (rho_i x g))_k =
  * (g . (axis_k x rho_i))_k, and for these axes: roll (R e_x) x rho_i = R (e_x x e_r) =
@@ -29,10 +32,11 @@
  * rho_x g_y - rho_y g_x.  det(Ax) = R e_x . (cos yaw, sin yaw, 0) = cos(pitch); e_ij s =
  * rho_i - rho_j.
  *
- * type2_normal gives n_i divided by its two rows' norms (0 for a zero row), from the slides of
- * scissor i, while the solver's values are at hand; type2_ratio the ratio from the three. */
-static inline int type2_normal(const tse_geometry *g, const tse_pose_frame *f, int i, const tse_scissor_local *loc,
-                               tse_real s_a, tse_real s_b, tse_real w2, tse_real n[3])
+ * type2_normal gives n_i and the product of its two rows' squared norms (0 for a zero row), from
+ * the slides of scissor i, while the solver's values are at hand; type2_ratio the ratio from the
+ * three. */
+static inline tse_real type2_normal(const tse_geometry *g, const tse_pose_frame *f, int i,
+                                    const tse_scissor_local *loc, tse_real s_a, tse_real s_b, tse_real n[3])
 {
     const tse_scissor_frame *sf = &g->sc[i];
     const tse_real *rho = f->rho[i];
@@ -49,23 +53,20 @@ static inline int type2_normal(const tse_geometry *g, const tse_pose_frame *f, i
     const tse_real r2 = sb * (g2[0] * f->N[0] + g2[1] * f->N[1] + g2[2] * f->N[2]);
     const tse_real p2 = g2[0] * h[0] + g2[1] * h[1] + g2[2] * h[2];
     const tse_real y2 = rho[0] * g2[1] - rho[1] * g2[0];
-    const tse_real nn1 = w2 + (r1 * r1 + p1 * p1 + y1 * y1);
+    const tse_real nn1 = (g1[0] * g1[0] + g1[1] * g1[1]) + (r1 * r1 + p1 * p1 + y1 * y1);
     const tse_real nn2 = (g2[0] * g2[0] + g2[1] * g2[1] + g2[2] * g2[2]) + (r2 * r2 + p2 * p2 + y2 * y2);
-    const tse_real norms = tse_sqrt(nn1) * tse_sqrt(nn2);
-    /* A zero row makes Fp singular (tse_hadamard_ratio's convention). */
-    if (!(norms > TSE_R(0.0)))
-        return 0;
-    const tse_real k = TSE_R(1.0) / norms;
-    const tse_real kz = k * g2[2];
-    n[0] = kz * g1[1];
-    n[1] = -(kz * g1[0]);
-    n[2] = k * (g1[0] * g2[1] - g1[1] * g2[0]);
-    return 1;
+    n[0] = g2[2] * g1[1];
+    n[1] = -(g2[2] * g1[0]);
+    n[2] = g1[0] * g2[1] - g1[1] * g2[0];
+    return nn1 * nn2;
 }
 
-/* The ratio from the three scaled normals of type2_normal. */
-static inline tse_real type2_ratio(const tse_pose_frame *f, const tse_real n[3][3])
+/* The ratio from the three normals of type2_normal and the products of their rows' squared norms;
+ * 0 when a row is zero (Fp singular, tse_hadamard_ratio's convention). */
+static inline tse_real type2_ratio(const tse_pose_frame *f, const tse_real n[3][3], const tse_real nn[3])
 {
+    if (!(nn[0] > TSE_R(0.0) && nn[1] > TSE_R(0.0) && nn[2] > TSE_R(0.0)))
+        return TSE_R(0.0);
     tse_real e12[3], e13[3], e23[3];
     for (int k = 0; k < 3; ++k) {
         e12[k] = f->rho[0][k] - f->rho[1][k];
@@ -76,7 +77,7 @@ static inline tse_real type2_ratio(const tse_pose_frame *f, const tse_real n[3][
     const tse_real det_k = DOT3(n[0], e12) * DOT3(n[1], e23) * DOT3(n[2], e13) -
                            DOT3(n[1], e12) * DOT3(n[0], e13) * DOT3(n[2], e23);
 #undef DOT3
-    return tse_fabs(det_k * f->cp);
+    return tse_fabs(det_k * f->cp) / tse_sqrt(nn[0] * nn[1] * nn[2]);
 }
 
 /* The per-scissor checks of kinematics.md, in its order, on a branch solution. */
@@ -128,6 +129,7 @@ static tse_status invalid(tse_ik_result *out)
     return reject(out, TSE_INVALID, 1);
 }
 
+TSE_FMA_CLONES
 tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real seed_q[6],
                   tse_ik_result *out)
 {
@@ -148,21 +150,32 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
         for (int k = 0; k < 3; ++k)
             out->C[i][k] = pose[k] + g->r_top * frame.rho[i][k];
 
+    /* With a seed, Newton's first pass for the three scissors side by side (scissor_warm_steps):
+     * from a warm seed it is the whole solve.  From home (no seed) it seldom is. */
+    tse_scissor_local loc[3];
+    scissor_warm warm[3];
+    tse_real seed[6];
+    for (int k = 0; k < 6; ++k)
+        seed[k] = seed_q ? seed_q[k] : g->home_s;
+    for (int i = 0; i < 3; ++i)
+        scissor_localize_inline(&g->sc[i], out->C[i], &loc[i]);
+    if (seed_q)
+        for (int i = 0; i < 3; ++i)
+            scissor_warm_steps(g, &loc[i], seed[2 * i], seed[2 * i + 1], &warm[i]);
+
     /* All three are solved even after a failure, so that a rejection still shows every slide. */
     tse_status first = TSE_OK;
     int first_scissor = 0, inputs_checked = 0;
-    tse_real n[3][3];
-    int rows_nonzero = 1;
+    tse_real n[3][3], nn[3];
     for (int i = 0; i < 3; ++i) {
         tse_scissor_solution sol;
-        tse_scissor_local loc;
-        const tse_real seed_a = seed_q ? seed_q[2 * i] : g->home_s;
-        const tse_real seed_b = seed_q ? seed_q[2 * i + 1] : g->home_s;
+        const tse_real seed_a = seed[2 * i], seed_b = seed[2 * i + 1];
         tse_real a = seed_a, b = seed_b;
         int iterations;
-        scissor_localize_inline(&g->sc[i], out->C[i], &loc);
         tse_status st = TSE_OK;
-        if (!scissor_solve_fast(g, &loc, &a, &b, &iterations, &sol)) {
+        if (!(seed_q && scissor_warm_end(g, &loc[i], seed_a, seed_b, &warm[i],
+                                         SCISSOR_LIMITS | SCISSOR_SKIP_WIDTH, &iterations, &sol)) &&
+            !scissor_solve_fast(g, &loc[i], &a, &b, 1, &iterations, &sol)) {
             if (!inputs_checked) {
                 if (!all_finite(pose, 6) || (seed_q != NULL && !all_finite(seed_q, 6)))
                     return invalid(out);
@@ -171,7 +184,7 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
             /* Its own struct: sol, whose address then never leaves this function, can live in
              * registers on the common path. */
             tse_scissor_solution fb;
-            st = tse_scissor_fallback(g, &loc, seed_a, seed_b, a, b, iterations, &fb);
+            st = tse_scissor_fallback(g, &loc[i], seed_a, seed_b, a, b, iterations, &fb);
             sol = fb;
         }
         out->iterations += sol.iterations;
@@ -188,7 +201,7 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
             else if (!(sol.mu >= g->p.mu_min))
                 st = TSE_SINGULAR;
             if (st == TSE_OK)
-                rows_nonzero &= type2_normal(g, &frame, i, &loc, sol.s_a, sol.s_b, sol.w * sol.w, n[i]);
+                nn[i] = type2_normal(g, &frame, i, &loc[i], sol.s_a, sol.s_b, n[i]);
         } else {
             out->q[2 * i] = (tse_real)NAN;
             out->q[2 * i + 1] = (tse_real)NAN;
@@ -204,7 +217,7 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
 
     /* Type 2: rotation columns in metres of ball-joint travel, so that they weigh like the
      * translation columns whatever the plate size. */
-    out->nu = rows_nonzero ? type2_ratio(&frame, (const tse_real(*)[3])n) : TSE_R(0.0);
+    out->nu = type2_ratio(&frame, (const tse_real(*)[3])n, nn);
     if (!(out->nu >= g->p.nu_min)) {
         tse_plate plate;
         tse_real Fp[6][6];

@@ -78,7 +78,7 @@ static int enumerate(const tse_geometry *g, const scissor_consts *k, const tse_s
         tse_scissor_solution cand;
         int valid = scissor_newton(g, k, loc->rho2, &a, &b, POLISH_MAX_ITER, 0, iterations, &cand);
         if (valid < 0)
-            valid = scissor_describe_at(g, k, loc->rho2, a, b, &cand);
+            valid = scissor_describe_at(g, k, loc->rho2, a, b, 0, &cand);
         /* A polish that wandered off a spurious root leaves a residual far above rounding. */
         if (!valid)
             continue;
@@ -109,7 +109,7 @@ tse_status tse_scissor_fallback(const tse_geometry *g, const tse_scissor_local *
         *out = best;
     } else {
         /* Leave something printable for diagnostics. */
-        scissor_describe_at(g, &k, loc->rho2, s_a, s_b, out);
+        scissor_describe_at(g, &k, loc->rho2, s_a, s_b, 0, out);
     }
     out->iterations = iterations;
     out->fallback = 1;
@@ -121,7 +121,7 @@ tse_status tse_scissor_solve_local(const tse_geometry *g, const tse_scissor_loca
 {
     tse_real a = seed_a, b = seed_b;
     int iterations;
-    if (scissor_solve_fast(g, loc, &a, &b, &iterations, out))
+    if (scissor_solve_fast(g, loc, &a, &b, 0, &iterations, out))
         return TSE_OK;
     return tse_scissor_fallback(g, loc, seed_a, seed_b, a, b, iterations, out);
 }

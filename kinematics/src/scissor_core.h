@@ -66,27 +66,38 @@ static inline void scissor_eval_point(const scissor_consts *k, tse_real s_a, tse
     pt->det = ea * pt->m22 + eb * pt->m21;
 }
 
-/* Stroke and the alpha stops (as the band w_lo <= w <= w_hi). */
-static inline int scissor_in_limits(const tse_geometry *g, tse_real s_a, tse_real s_b, tse_real w)
+/* What a solve's verdict covers, and what it may leave out. */
+enum {
+    SCISSOR_LIMITS = 1,     /* the verdict includes the stroke and the stops */
+    SCISSOR_SKIP_WIDTH = 2, /* out->w may be left unset (a square root the caller has no use for) */
+};
+
+static inline int scissor_in_stroke(const tse_geometry *g, tse_real s_a, tse_real s_b)
 {
-    return s_a >= g->p.s_min && s_a <= g->p.s_max && s_b >= g->p.s_min && s_b <= g->p.s_max &&
-           w >= g->w_lo && w <= g->w_hi;
+    return s_a >= g->p.s_min && s_a <= g->p.s_max && s_b >= g->p.s_min && s_b <= g->p.s_max;
+}
+
+/* Stroke and the alpha stops, as the band w_lo2 <= w^2 <= w_hi2 (geometry.h: the same verdict as
+ * w = sqrt(w^2) against w_lo, w_hi, as scissor_within_limits takes it). */
+static inline int scissor_in_limits(const tse_geometry *g, tse_real s_a, tse_real s_b, tse_real w2)
+{
+    return scissor_in_stroke(g, s_a, s_b) && w2 >= g->w_lo2 && w2 <= g->w_hi2;
 }
 
 static inline int scissor_within_limits(const tse_geometry *g, const tse_scissor_solution *s)
 {
-    return scissor_in_limits(g, s->s_a, s->s_b, s->w);
+    return scissor_in_stroke(g, s->s_a, s->s_b) && s->w >= g->w_lo && s->w <= g->w_hi;
 }
 
 /* Fills everything but the iteration counts from the evaluation pt at (s_a, s_b), and returns 1
  * when the point solves the pair and lies on the physical sheet (det M > 0, positive slides),
- * and with limits also inside the stroke and the stops.
+ * and with SCISSOR_LIMITS in flags also inside the stroke and the stops.
  *
  * Solves: a stalled iteration leaves |F| of 1e-2 and more, a root at most the stopping error
  * times |M| plus rounding; sqrt(eps) of the size of F's terms lies well between (9e-8 in double,
  * 2e-3 in float). */
 static inline int scissor_describe(const tse_geometry *g, const scissor_consts *k, tse_real rho2,
-                                   tse_real s_a, tse_real s_b, const scissor_point *pt, int limits,
+                                   tse_real s_a, tse_real s_b, const scissor_point *pt, int flags,
                                    tse_scissor_solution *out)
 {
     out->s_a = s_a;
@@ -101,16 +112,17 @@ static inline int scissor_describe(const tse_geometry *g, const scissor_consts *
     const tse_real scale = rho2 + g->L2 + tse_fabs(k->g) * pt->w2 + s_a * s_a + s_b * s_b;
     const int solves = tse_fabs(pt->F1) + tse_fabs(pt->F2) <= tse_sqrt(TSE_REAL_EPS) * scale;
     return solves && pt->det > TSE_R(0.0) && s_a > TSE_R(0.0) && s_b > TSE_R(0.0) &&
-           (!limits || scissor_in_limits(g, s_a, s_b, w));
+           (!(flags & SCISSOR_LIMITS) || scissor_in_limits(g, s_a, s_b, pt->w2));
 }
 
 /* scissor_describe for the point the steps of scissor_newton's quadratic regime end on, without
  * the residual check: F there is, exactly but for the rounding of the first step's 2x2 solve,
  * the quadratic part of the last step, Q(n_2) (or dM(n_2) n_3 + Q(n_3) after the chord step): of
  * order acc^2 / L, orders below the check's sqrt(eps) of the terms.  So only M, w and the sheet
- * are evaluated, and the F of an evaluation is not (it is most of what one costs). */
+ * are evaluated, and the F of an evaluation is not (it is most of what one costs).  The stops are
+ * checked on w^2, so w's square root is taken only for a caller that wants w. */
 static inline int scissor_describe_settled(const tse_geometry *g, const scissor_consts *k, tse_real s_a,
-                                           tse_real s_b, int limits, tse_scissor_solution *out)
+                                           tse_real s_b, int flags, tse_scissor_solution *out)
 {
     const tse_real ea = s_a - k->u, eb = s_b - k->v;
     const tse_real p = s_a + k->c * s_b, r = s_b + k->c * s_a;
@@ -121,19 +133,69 @@ static inline int scissor_describe_settled(const tse_geometry *g, const scissor_
     out->s_b = s_b;
     out->det = TSE_R(4.0) * det;
     out->mu = det / tse_sqrt((ea * ea + eb * eb) * (m21 * m21 + m22 * m22));
-    const tse_real w = tse_sqrt(w2);
-    out->w = w;
+    if (!(flags & SCISSOR_SKIP_WIDTH))
+        out->w = tse_sqrt(w2);
     return det > TSE_R(0.0) && s_a > TSE_R(0.0) && s_b > TSE_R(0.0) &&
-           (!limits || scissor_in_limits(g, s_a, s_b, w));
+           (!(flags & SCISSOR_LIMITS) || scissor_in_limits(g, s_a, s_b, w2));
 }
 
 /* scissor_describe at a point not evaluated yet. */
 static inline int scissor_describe_at(const tse_geometry *g, const scissor_consts *k, tse_real rho2,
-                                      tse_real s_a, tse_real s_b, tse_scissor_solution *out)
+                                      tse_real s_a, tse_real s_b, int flags, tse_scissor_solution *out)
 {
     scissor_point pt;
     scissor_eval_point(k, s_a, s_b, &pt);
-    return scissor_describe(g, k, rho2, s_a, s_b, &pt, 0, out);
+    return scissor_describe(g, k, rho2, s_a, s_b, &pt, flags, out);
+}
+
+/* One Newton step from the evaluation pt: M dx = F with M = 2 [ea, -eb; m21, m22], the 1/2 riding
+ * on the inverse determinant.  A zero or non-finite determinant or residual makes the step
+ * non-finite (scissor_newton stops on it). */
+typedef struct {
+    tse_real inv;    /* 1 / (2 det(M / 2)) */
+    tse_real da, db; /* the step, to be subtracted */
+    tse_real n2;     /* its squared length */
+    tse_real q1, q2; /* Q(dx) = (da^2 - db^2, da^2 - g (da^2 + db^2 + 2 c da db)): F at x - dx */
+} scissor_step;
+
+static inline void scissor_step_of(const scissor_consts *k, const scissor_point *pt, scissor_step *s)
+{
+    s->inv = TSE_R(0.5) / pt->det;
+    s->da = (pt->m22 * pt->F1 + pt->eb * pt->F2) * s->inv;
+    s->db = (pt->ea * pt->F2 - pt->m21 * pt->F1) * s->inv;
+    s->n2 = s->da * s->da + s->db * s->db;
+    const tse_real aa = s->da * s->da, bb = s->db * s->db;
+    s->q1 = aa - bb;
+    s->q2 = aa - k->g * ((aa + bb) + k->c2 * (s->da * s->db));
+}
+
+/* The second step of the quadratic regime, from M at x - dx and the residual Q(dx) there. */
+typedef struct {
+    tse_real ea, eb, m21, m22; /* M / 2 at x - dx */
+    tse_real inv2;             /* 1 / (2 det(M / 2)) there */
+    tse_real ea2, eb2;         /* the step */
+    tse_real e2;               /* its squared length */
+} scissor_second;
+
+static inline void scissor_second_of(const scissor_consts *k, const scissor_point *pt, const scissor_step *s,
+                                     scissor_second *t)
+{
+    /* ea and eb fall by the step, and the second row by (da, -db) - g (da + c db, db + c da). */
+    t->ea = pt->ea - s->da;
+    t->eb = pt->eb - s->db;
+    t->m21 = pt->m21 - (s->da - k->g * (s->da + k->c * s->db));
+    t->m22 = pt->m22 + k->g * (s->db + k->c * s->da);
+    t->inv2 = TSE_R(0.5) / (t->ea * t->m22 + t->eb * t->m21);
+    t->ea2 = (t->m22 * s->q1 + t->eb * s->q2) * t->inv2;
+    t->eb2 = (t->ea * s->q2 - t->m21 * s->q1) * t->inv2;
+    t->e2 = t->ea2 * t->ea2 + t->eb2 * t->eb2;
+}
+
+/* Whether two steps of squared lengths n2, e2 show quadratic convergence (n_2 <= n_1 / 4) and
+ * predict an error n_2^3 / n_1^2 below acc, squared. */
+static inline int scissor_settles(const tse_geometry *g, tse_real n2, tse_real e2)
+{
+    return TSE_R(16.0) * e2 <= n2 && e2 * e2 * e2 <= g->newton_acc2 * n2 * n2;
 }
 
 /* Newton from (s_a, s_b) with steps bounded by step_max, then scissor_describe on the point it
@@ -156,77 +218,63 @@ static inline int scissor_describe_at(const tse_geometry *g, const scissor_const
  *   the two steps, and M and w where they end (scissor_describe_settled).
  * A small step is not proof of a root in general (it can stall where |F| has a minimum), hence
  * the residual check of scissor_describe wherever the iteration ends on an evaluation; after the
- * steps from one evaluation the residual is known (scissor_describe_settled).  With limits, the
- * verdict includes the stroke and the stops.  Returns -1 when Newton gives up (out and
- * (s_a, s_b) untouched), else the verdict on the point, left in (s_a, s_b). */
-static inline int scissor_newton(const tse_geometry *g, const scissor_consts *k, tse_real rho2, tse_real *s_a,
-                                 tse_real *s_b, int max_iter, int limits, int *iterations, tse_scissor_solution *out)
+ * steps from one evaluation the residual is known (scissor_describe_settled).  flags as
+ * scissor_describe's and scissor_describe_settled's.  Returns -1 when Newton gives up (out and
+ * (s_a, s_b) untouched), else the verdict on the point, left in (s_a, s_b).  scissor_warm_end
+ * is this function's first pass, for three scissors side by side. */
+static TSE_ALWAYS_INLINE int scissor_newton(const tse_geometry *g, const scissor_consts *k, tse_real rho2, tse_real *s_a,
+                                 tse_real *s_b, int max_iter, int flags, int *iterations, tse_scissor_solution *out)
 {
     tse_real a = *s_a, b = *s_b;
     scissor_point pt;
     for (int it = 0;; ++it) {
         scissor_eval_point(k, a, b, &pt);
-        /* M dx = F with M = 2 [ea, -eb; m21, m22]: the 1/2 rides on the inverse determinant.
-         * A zero or non-finite determinant or residual makes the step non-finite: caught below. */
-        const tse_real inv = TSE_R(0.5) / pt.det;
-        tse_real da = (pt.m22 * pt.F1 + pt.eb * pt.F2) * inv;
-        tse_real db = (pt.ea * pt.F2 - pt.m21 * pt.F1) * inv;
-        const tse_real n2 = da * da + db * db;
-        if (n2 <= g->newton_acc2)
+        scissor_step s;
+        scissor_step_of(k, &pt, &s);
+        if (s.n2 <= g->newton_acc2)
             break;
         if (it == max_iter)
             return -1;
-        /* Q(dx) = (da^2 - db^2, da^2 - g (da^2 + db^2 + 2 c da db)): the residual at x - dx. */
-        const tse_real aa = da * da, bb = db * db;
-        const tse_real q1 = aa - bb;
-        const tse_real q2 = aa - k->g * ((aa + bb) + k->c2 * (da * db));
-        if (n2 <= g->newton_regime2) {
-            /* M / 2 at x - dx: ea and eb fall by the step, and the second row by
-             * (da, -db) - g (da + c db, db + c da). */
-            const tse_real ea = pt.ea - da, eb = pt.eb - db;
-            const tse_real m21 = pt.m21 - (da - k->g * (da + k->c * db));
-            const tse_real m22 = pt.m22 + k->g * (db + k->c * da);
-            const tse_real inv2 = TSE_R(0.5) / (ea * m22 + eb * m21);
-            const tse_real ea2 = (m22 * q1 + eb * q2) * inv2;
-            const tse_real eb2 = (ea * q2 - m21 * q1) * inv2;
-            const tse_real e2 = ea2 * ea2 + eb2 * eb2;
-            a -= da + ea2;
-            b -= db + eb2;
+        if (s.n2 <= g->newton_regime2) {
+            scissor_second t;
+            scissor_second_of(k, &pt, &s, &t);
+            a -= s.da + t.ea2;
+            b -= s.db + t.eb2;
             *iterations += 2;
-            if (TSE_R(16.0) * e2 <= n2) {
-                /* n_2 <= n_1 / 4 and n_2^3 <= acc n_1^2, squared. */
-                if (e2 * e2 * e2 <= g->newton_acc2 * n2 * n2) {
+            if (TSE_R(16.0) * t.e2 <= s.n2) {
+                if (scissor_settles(g, s.n2, t.e2)) {
                     *s_a = a;
                     *s_b = b;
-                    return scissor_describe_settled(g, k, a, b, limits, out);
+                    return scissor_describe_settled(g, k, a, b, flags, out);
                 }
                 /* Short of that, the residual Q(n_2) left by the second step, with the second
                  * step's factorisation: the error left is then about K n_2 n_3, K about
                  * n_2 / n_1^2. */
-                const tse_real a2 = ea2 * ea2, b2 = eb2 * eb2;
+                const tse_real a2 = t.ea2 * t.ea2, b2 = t.eb2 * t.eb2;
                 const tse_real r1 = a2 - b2;
-                const tse_real r2 = a2 - k->g * ((a2 + b2) + k->c2 * (ea2 * eb2));
-                const tse_real ea3 = (m22 * r1 + eb * r2) * inv2;
-                const tse_real eb3 = (ea * r2 - m21 * r1) * inv2;
+                const tse_real r2 = a2 - k->g * ((a2 + b2) + k->c2 * (t.ea2 * t.eb2));
+                const tse_real ea3 = (t.m22 * r1 + t.eb * r2) * t.inv2;
+                const tse_real eb3 = (t.ea * r2 - t.m21 * r1) * t.inv2;
                 const tse_real e3 = ea3 * ea3 + eb3 * eb3;
                 a -= ea3;
                 b -= eb3;
                 *iterations += 1;
-                if (TSE_R(16.0) * e3 <= e2 && e2 * e2 * e3 <= g->newton_acc2 * n2 * n2) {
+                if (TSE_R(16.0) * e3 <= t.e2 && t.e2 * t.e2 * e3 <= g->newton_acc2 * s.n2 * s.n2) {
                     *s_a = a;
                     *s_b = b;
-                    return scissor_describe_settled(g, k, a, b, limits, out);
+                    return scissor_describe_settled(g, k, a, b, flags, out);
                 }
             }
             continue;
         }
-        if (n2 <= g->newton_max2) {
-            da += (pt.m22 * q1 + pt.eb * q2) * inv;
-            db += (pt.ea * q2 - pt.m21 * q1) * inv;
+        tse_real da = s.da, db = s.db;
+        if (s.n2 <= g->newton_max2) {
+            da += (pt.m22 * s.q1 + pt.eb * s.q2) * s.inv;
+            db += (pt.ea * s.q2 - pt.m21 * s.q1) * s.inv;
         } else {
-            if (!(n2 < (tse_real)INFINITY))
+            if (!(s.n2 < (tse_real)INFINITY))
                 return -1;
-            const tse_real t = g->step_max / tse_sqrt(n2);
+            const tse_real t = g->step_max / tse_sqrt(s.n2);
             da *= t;
             db *= t;
         }
@@ -236,21 +284,81 @@ static inline int scissor_newton(const tse_geometry *g, const scissor_consts *k,
     }
     *s_a = a;
     *s_b = b;
-    return scissor_describe(g, k, rho2, a, b, &pt, limits, out);
+    return scissor_describe(g, k, rho2, a, b, &pt, flags, out);
+}
+
+/* scissor_newton's first pass from a seed, split in two so that a caller can run it for several
+ * scissors side by side: scissor_warm_steps is its arithmetic, without a branch (an out-of-order
+ * core then overlaps the scissors' chains of dependent multiplications and divisions, which one
+ * after the other is what a warm solve waits on), scissor_warm_end its decision.  Only what the
+ * decision needs is kept between the two. */
+typedef struct {
+    tse_real n2, e2;   /* the two steps' squared lengths */
+    tse_real s_a, s_b; /* where they end */
+} scissor_warm;
+
+static inline void scissor_warm_steps(const tse_geometry *g, const tse_scissor_local *loc, tse_real s_a,
+                                      tse_real s_b, scissor_warm *w)
+{
+    scissor_consts k;
+    scissor_point pt;
+    scissor_step s;
+    scissor_second t;
+    scissor_consts_of(g, loc, &k);
+    scissor_eval_point(&k, s_a, s_b, &pt);
+    scissor_step_of(&k, &pt, &s);
+    scissor_second_of(&k, &pt, &s, &t);
+    w->n2 = s.n2;
+    w->e2 = t.e2;
+    w->s_a = s_a - (s.da + t.ea2);
+    w->s_b = s_b - (s.db + t.eb2);
+}
+
+/* scissor_solve_fast's result when scissor_newton ends on its first pass from (s_a, s_b) with a
+ * solution inside the limits (the seed was already one, or the two steps settle): returns 1 with
+ * out and *iterations as scissor_solve_fast gives them, the same bit for bit (the same
+ * arithmetic in the same order).  Returns 0 in every other case, for scissor_solve_fast to
+ * decide from the seed. */
+static inline int scissor_warm_end(const tse_geometry *g, const tse_scissor_local *loc, tse_real s_a,
+                                   tse_real s_b, const scissor_warm *w, int flags, int *iterations,
+                                   tse_scissor_solution *out)
+{
+    int ok;
+    if (!(loc->rho2 <= g->reach2))
+        return 0;
+    scissor_consts k;
+    scissor_consts_of(g, loc, &k);
+    if (w->n2 <= g->newton_acc2) {
+        /* The seed solves already (as when the forward kinematics verifies its answer). */
+        *iterations = 0;
+        ok = scissor_describe_at(g, &k, loc->rho2, s_a, s_b, flags, out);
+    } else if (w->n2 <= g->newton_regime2 && scissor_settles(g, w->n2, w->e2)) {
+        *iterations = 2;
+        ok = scissor_describe_settled(g, &k, w->s_a, w->s_b, flags, out);
+    } else {
+        return 0;
+    }
+    if (ok != 1)
+        return 0;
+    out->iterations = *iterations;
+    out->fallback = 0;
+    return 1;
 }
 
 /* tse_scissor_solve_local's common case: Newton from the seed lands on a physical solution
  * inside the limits; returns 1 with out filled.  Otherwise 0, with where Newton got to (the seed
- * if it failed) and its iterations, for tse_scissor_fallback (scissor.c). */
-static inline int scissor_solve_fast(const tse_geometry *g, const tse_scissor_local *loc, tse_real *s_a,
-                                     tse_real *s_b, int *iterations, tse_scissor_solution *out)
+ * if it failed) and its iterations, for tse_scissor_fallback (scissor.c).  With skip_width, out->w
+ * may be left unset. */
+static TSE_ALWAYS_INLINE int scissor_solve_fast(const tse_geometry *g, const tse_scissor_local *loc, tse_real *s_a,
+                                     tse_real *s_b, int skip_width, int *iterations, tse_scissor_solution *out)
 {
     scissor_consts k;
     scissor_consts_of(g, loc, &k);
     *iterations = 0;
     if (!(loc->rho2 <= g->reach2))
         return 0; /* no physical solution at all: tse_scissor_fallback says so */
-    if (scissor_newton(g, &k, loc->rho2, s_a, s_b, TSE_NEWTON_MAX_ITER, 1, iterations, out) == 1) {
+    const int flags = SCISSOR_LIMITS | (skip_width ? SCISSOR_SKIP_WIDTH : 0);
+    if (scissor_newton(g, &k, loc->rho2, s_a, s_b, TSE_NEWTON_MAX_ITER, flags, iterations, out) == 1) {
         out->iterations = *iterations;
         out->fallback = 0;
         return 1;

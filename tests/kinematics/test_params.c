@@ -2,6 +2,14 @@
  * (kinematics.md, "Design parameters", "Frames"). */
 #include "test_common.h"
 
+#if TSE_REAL_FLOAT
+#define nextafter_real(x, up) nextafterf((x), (up) ? INFINITY : 0.0f)
+#define sqrt_real sqrtf
+#else
+#define nextafter_real(x, up) nextafter((x), (up) ? INFINITY : 0.0)
+#define sqrt_real sqrt
+#endif
+
 /* The prototype, from kinematics.md's table. */
 static void test_default_is_prototype(void **state)
 {
@@ -253,6 +261,50 @@ static void test_geometry_frames(void **state)
     assert_true(g.step_max > 0 && g.step_max < p.L);
 }
 
+/* The stops' band on w^2 (w_lo2, w_hi2) gives the verdict of sqrt(w^2) against w_lo, w_hi on
+ * every value near its ends, for designs from tiny to huge: the solver checks one form, the
+ * fallback the other. */
+static void test_width_band_squared(void **state)
+{
+    (void)state;
+    const double scales[] = {1.0, 1e-30, 1e-3, 7.3, 1e25};
+    const double alphas[][2] = {{0.0, 0.0}, {0.01, 1.5}, {0.4, 0.41}, {1e-6, 1.5707}};
+    int checked = 0;
+    for (size_t s = 0; s < sizeof scales / sizeof scales[0]; s++) {
+        for (size_t a = 0; a < sizeof alphas / sizeof alphas[0]; a++) {
+            tse_params p;
+            tse_params_default(&p);
+            p.L = (tse_real)(p.L * scales[s]);
+            p.s_min = (tse_real)(p.s_min * scales[s]);
+            p.s_max = (tse_real)(p.s_max * scales[s]);
+            if (alphas[a][1] > 0.0) {
+                p.alpha_min = (tse_real)alphas[a][0];
+                p.alpha_max = (tse_real)alphas[a][1];
+            }
+            tse_geometry g;
+            assert_int_equal(tse_geometry_init(&g, &p), TSE_PARAM_OK);
+            const tse_real ends[2] = {g.w_lo * g.w_lo, g.w_hi * g.w_hi};
+            for (int e = 0; e < 2; e++) {
+                tse_real x = ends[e];
+                for (int k = 0; k < 64; k++)
+                    x = nextafter_real(x, 0);
+                for (int k = 0; k < 128; k++, x = nextafter_real(x, 1)) {
+                    const tse_real w = sqrt_real(x);
+                    if ((x >= g.w_lo2) != (w >= g.w_lo) || (x <= g.w_hi2) != (w <= g.w_hi)) {
+                        print_error("L %g alpha %g..%g: w^2 %.17g (w %.17g) against [%.17g, %.17g] and "
+                                    "[%.17g, %.17g]\n",
+                                    (double)p.L, (double)p.alpha_min, (double)p.alpha_max, (double)x, (double)w,
+                                    (double)g.w_lo2, (double)g.w_hi2, (double)g.w_lo, (double)g.w_hi);
+                        fail();
+                    }
+                    checked++;
+                }
+            }
+        }
+    }
+    assert_int_equal(checked, 5 * 4 * 2 * 128);
+}
+
 static void test_names(void **state)
 {
     (void)state;
@@ -299,6 +351,7 @@ int main(void)
         cmocka_unit_test(test_ordering_rules),
         cmocka_unit_test(test_valid_edges_accepted),
         cmocka_unit_test(test_geometry_frames),
+        cmocka_unit_test(test_width_band_squared),
         cmocka_unit_test(test_names),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -22,6 +22,9 @@ typedef struct {
     tse_real g;           /* (1 - (L/l0)^2) / 4 */
     tse_real c;           /* cos(2 eta) */
     tse_real w_lo, w_hi;  /* base width at alpha_max and alpha_min: w_lo <= w <= w_hi is in the stops */
+    /* The same band on w^2, without a square root: w_lo2 <= w^2 <= w_hi2 exactly when the rounded
+     * sqrt(w^2) lies in [w_lo, w_hi], so both forms give one verdict. */
+    tse_real w_lo2, w_hi2;
     tse_real step_max;    /* Newton step bound [m] */
     /* Squared step lengths [m^2] of the Newton solvers (kinematics/src/scissor_core.h and fk.c say
      * what each decides), and L^2: derived once here rather than on every solve. */
