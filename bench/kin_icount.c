@@ -28,6 +28,19 @@
 
 enum { POSES = 2000, CONTROL_HZ = 1000, STEP_HZ = 200000 };
 
+/* Which of the library's two x86-64 builds of tse_ik and FK's step this CPU runs
+ * (kinematics/src/kin_internal.h, TSE_FMA_CLONES): the loader picks the same one. */
+static const char *counted_build(void)
+{
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(TSE_NO_FMA_CLONES)
+    if (__builtin_cpu_supports("fma"))
+        return "fused multiply-add (this CPU has FMA; scripts/kin_icount.sh --baseline counts the baseline build)";
+    return "baseline x86-64 (this CPU has no FMA)";
+#else
+    return "baseline (built without the FMA clones)";
+#endif
+}
+
 #define NOINLINE __attribute__((noinline))
 
 /* The move planning's state, filled by plan_setup. */
@@ -143,6 +156,7 @@ int main(int argc, char **argv)
                 figs[i].loop_fn();
         }
     printf("# poses the warm inverse kinematics rejects on the path: double %d, float %d\n", rej_d, rej_f);
+    printf("# build: %s\n", counted_build());
     printf("# move: home to +0.3 m and 0.1 rad roll in 5 s, %u segments at %d Hz\n", (unsigned)mv_st.segments,
            CONTROL_HZ);
     for (int i = 0; i < nfig; ++i)

@@ -21,15 +21,26 @@
 # ik_float_warm, fk_double_warm, validate_segment, ik_float_cold, fk_float_warm; then one `#` line
 # per figure with its goal.  The board's own figures come from scripts/target_bench.sh.
 #
-# Usage: scripts/kin_icount.sh            (builds into build/release)
+# On an x86-64 CPU with fused multiply-add, tse_ik and FK's Newton step run their second build
+# (kinematics/src/kin_internal.h, TSE_FMA_CLONES) and that is what is counted; --baseline builds
+# without it (-DTSE_NO_FMA_CLONES, into build/release-baseline) and counts the baseline x86-64
+# code.  A `# build:` line says which was counted.
+#
+# Usage: scripts/kin_icount.sh [--baseline]   (builds into build/release, or build/release-baseline)
 #        TSE_ICOUNT_BUILD=DIR scripts/kin_icount.sh   (another build directory, release preset)
 # Needs valgrind (scripts/setup.sh installs it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+flags=
 build=${TSE_ICOUNT_BUILD:-build/release}
+case ${1:-} in
+  '') ;;
+  --baseline) flags=-DTSE_NO_FMA_CLONES; build=${TSE_ICOUNT_BUILD:-build/release-baseline} ;;
+  *) echo "kin_icount: unknown argument '$1' (usage: scripts/kin_icount.sh [--baseline])" >&2; exit 2 ;;
+esac
 
 command -v valgrind >/dev/null 2>&1 || { echo "kin_icount: valgrind not found (bash scripts/setup.sh installs it)" >&2; exit 1; }
-cmake --preset release -B "$build" >/dev/null
+cmake --preset release -B "$build" -DCMAKE_C_FLAGS="$flags" >/dev/null
 cmake --build "$build" --target kin-icount -j "$(nproc)" >/dev/null
 bin=$build/bench/kin-icount
 
@@ -72,3 +83,4 @@ fk_goal=$(( 3 * fig[ik_double_warm] ))
 echo "# fk_double_warm: goal <= 3 x ik_double_warm = $fk_goal instructions ($(verdict "${fig[fk_double_warm]}" "$fk_goal"))"
 echo "# validate_segment: for information; the move has ${ncalls[validate_segment]} segments, and planning it takes ${ntotal[validate_segment]} instructions"
 [ -z "${fig[ik_float_cold]:-}" ] || echo "# ik_float_cold, fk_float_warm: host float, for information"
+grep '^# build:' <<<"$list"

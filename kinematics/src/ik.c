@@ -155,11 +155,12 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
     tse_scissor_local loc[3];
     scissor_warm warm[3];
     tse_real seed[6];
+    const int side_by_side = TSE_SIDE_BY_SIDE && seed_q != NULL;
     for (int k = 0; k < 6; ++k)
         seed[k] = seed_q ? seed_q[k] : g->home_s;
     for (int i = 0; i < 3; ++i)
         scissor_localize_inline(&g->sc[i], out->C[i], &loc[i]);
-    if (seed_q)
+    if (side_by_side)
         for (int i = 0; i < 3; ++i)
             scissor_warm_steps(g, &loc[i], seed[2 * i], seed[2 * i + 1], &warm[i]);
 
@@ -173,7 +174,7 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
         tse_real a = seed_a, b = seed_b;
         int iterations;
         tse_status st = TSE_OK;
-        if (!(seed_q && scissor_warm_end(g, &loc[i], seed_a, seed_b, &warm[i],
+        if (!(side_by_side && scissor_warm_end(g, &loc[i], seed_a, seed_b, &warm[i],
                                          SCISSOR_LIMITS | SCISSOR_SKIP_WIDTH, &iterations, &sol)) &&
             !scissor_solve_fast(g, &loc[i], &a, &b, 1, &iterations, &sol)) {
             if (!inputs_checked) {

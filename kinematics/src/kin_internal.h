@@ -25,6 +25,16 @@
 #define TSE_ALWAYS_INLINE inline
 #endif
 
+/* Whether tse_ik runs the three scissors' first Newton pass side by side (scissor_warm_steps):
+ * an out-of-order core overlaps their chains of dependent operations, an in-order one (an
+ * M-profile Arm: the board's Cortex-M4) would only pay for the bookkeeping.  The results are the
+ * same either way. */
+#if defined(__ARM_ARCH_PROFILE) && __ARM_ARCH_PROFILE == 'M'
+#define TSE_SIDE_BY_SIDE 0
+#else
+#define TSE_SIDE_BY_SIDE 1
+#endif
+
 /* What the constraints of one scissor need to know of its ball joint. */
 typedef struct {
     tse_real d[3]; /* C - O_i */
