@@ -129,6 +129,57 @@ static tse_status invalid(tse_ik_result *out)
     return reject(out, TSE_INVALID, 1);
 }
 
+/* Newton from the seed for the scissors from `from` on that the warm pass does not settle (all of
+ * them from home), side by side: one evaluation of each in turn (scissor_newton_pass), which an
+ * out-of-order core overlaps, each ending as scissor_solve_fast would alone.  verdict[i] is
+ * scissor_newton's (1: sol[i] is the solution; 0: Newton ended at run[i]'s slides, not on one
+ * inside the limits; -1: it gave up), or 0 for a ball joint beyond any reach. */
+typedef struct {
+    tse_scissor_solution sol[3];
+    scissor_run run[3];
+    int verdict[3];
+} side_newton;
+
+static TSE_ALWAYS_INLINE void newton_side_by_side(const tse_geometry *g, const tse_scissor_local loc[3],
+                                                  const scissor_warm warm[3], const tse_real seed[6],
+                                                  int warm_pass, int from, side_newton *nw)
+{
+    const int flags = SCISSOR_LIMITS | SCISSOR_SKIP_WIDTH;
+    scissor_consts kc[3];
+    int going = 0;
+    /* Loops over all three (a fixed count the compiler unrolls), those before `from` idle. */
+    for (int i = 0; i < 3; ++i) {
+        int iterations;
+        nw->verdict[i] = 0;
+        if (i < from)
+            continue;
+        nw->run[i] = (scissor_run){seed[2 * i], seed[2 * i + 1], 0, 0};
+        /* Scissor `from` is here because its warm pass did not settle. */
+        if (warm_pass && i > from &&
+            scissor_warm_end(g, &loc[i], seed[2 * i], seed[2 * i + 1], &warm[i], flags, &iterations, &nw->sol[i])) {
+            nw->verdict[i] = 1;
+        } else if (loc[i].rho2 <= g->reach2) {
+            scissor_consts_of(g, &loc[i], &kc[i]);
+            nw->verdict[i] = SCISSOR_GOING;
+            going = 1;
+        }
+    }
+    while (going) {
+        going = 0;
+        for (int i = 0; i < 3; ++i) {
+            if (nw->verdict[i] != SCISSOR_GOING)
+                continue;
+            nw->verdict[i] =
+                scissor_newton_pass(g, &kc[i], loc[i].rho2, TSE_NEWTON_MAX_ITER, flags, &nw->run[i], &nw->sol[i]);
+            if (nw->verdict[i] == 1) {
+                nw->sol[i].iterations = nw->run[i].iterations;
+                nw->sol[i].fallback = 0;
+            }
+            going |= nw->verdict[i] == SCISSOR_GOING;
+        }
+    }
+}
+
 TSE_FMA_CLONES
 tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real seed_q[6],
                   tse_ik_result *out)
@@ -150,8 +201,10 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
         for (int k = 0; k < 3; ++k)
             out->C[i][k] = pose[k] + g->r_top * frame.rho[i][k];
 
-    /* With a seed, Newton's first pass for the three scissors side by side (scissor_warm_steps):
-     * from a warm seed it is the whole solve.  From home (no seed) it seldom is. */
+    /* On an out-of-order core (TSE_SIDE_BY_SIDE) the three scissors are solved side by side: with
+     * a seed, Newton's first pass (scissor_warm_steps), which from a warm seed is the whole solve;
+     * whatever that leaves, and everything from home, newton_side_by_side.  On the board, one
+     * after the other (scissor_solve_fast).  The answers are the same bit for bit. */
     tse_scissor_local loc[3];
     scissor_warm warm[3];
     tse_real seed[6];
@@ -165,18 +218,37 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
             scissor_warm_steps(g, &loc[i], seed[2 * i], seed[2 * i + 1], &warm[i]);
 
     /* All three are solved even after a failure, so that a rejection still shows every slide. */
+    const int flags = SCISSOR_LIMITS | SCISSOR_SKIP_WIDTH;
     tse_status first = TSE_OK;
-    int first_scissor = 0, inputs_checked = 0;
+    int first_scissor = 0, inputs_checked = 0, newton_run = 0;
+    side_newton nw;
     tse_real n[3][3], nn[3];
     for (int i = 0; i < 3; ++i) {
         tse_scissor_solution sol;
         const tse_real seed_a = seed[2 * i], seed_b = seed[2 * i + 1];
-        tse_real a = seed_a, b = seed_b;
-        int iterations;
         tse_status st = TSE_OK;
-        if (!(side_by_side && scissor_warm_end(g, &loc[i], seed_a, seed_b, &warm[i],
-                                         SCISSOR_LIMITS | SCISSOR_SKIP_WIDTH, &iterations, &sol)) &&
-            !scissor_solve_fast(g, &loc[i], &a, &b, 1, &iterations, &sol)) {
+        int iterations, solved;
+        tse_real a = seed_a, b = seed_b; /* where Newton got to, for the fallback */
+        if (!TSE_SIDE_BY_SIDE) {
+            solved = scissor_solve_fast(g, &loc[i], &a, &b, 1, &iterations, &sol);
+        } else if (!newton_run && side_by_side &&
+                   scissor_warm_end(g, &loc[i], seed_a, seed_b, &warm[i], flags, &iterations, &sol)) {
+            solved = 1;
+        } else {
+            if (!newton_run) {
+                newton_side_by_side(g, loc, warm, seed, side_by_side, i, &nw);
+                newton_run = 1;
+            }
+            sol = nw.sol[i];
+            solved = nw.verdict[i] == 1;
+            iterations = nw.run[i].iterations;
+            /* Newton that gave up leaves the seed to the fallback, one that ended, its end. */
+            if (nw.verdict[i] >= 0) {
+                a = nw.run[i].a;
+                b = nw.run[i].b;
+            }
+        }
+        if (!solved) {
             if (!inputs_checked) {
                 if (!all_finite(pose, 6) || (seed_q != NULL && !all_finite(seed_q, 6)))
                     return invalid(out);

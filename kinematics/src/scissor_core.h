@@ -158,12 +158,17 @@ typedef struct {
     tse_real q1, q2; /* Q(dx) = (da^2 - db^2, da^2 - g (da^2 + db^2 + 2 c da db)): F at x - dx */
 } scissor_step;
 
-static inline void scissor_step_of(const scissor_consts *k, const scissor_point *pt, scissor_step *s)
+/* The step, without Q (scissor_step_quad): a Newton that stops at this step has no use for it. */
+static inline void scissor_step_of(const scissor_point *pt, scissor_step *s)
 {
     s->inv = TSE_R(0.5) / pt->det;
     s->da = (pt->m22 * pt->F1 + pt->eb * pt->F2) * s->inv;
     s->db = (pt->ea * pt->F2 - pt->m21 * pt->F1) * s->inv;
     s->n2 = s->da * s->da + s->db * s->db;
+}
+
+static inline void scissor_step_quad(const scissor_consts *k, scissor_step *s)
+{
     const tse_real aa = s->da * s->da, bb = s->db * s->db;
     s->q1 = aa - bb;
     s->q2 = aa - k->g * ((aa + bb) + k->c2 * (s->da * s->db));
@@ -198,6 +203,75 @@ static inline int scissor_settles(const tse_geometry *g, tse_real n2, tse_real e
     return TSE_R(16.0) * e2 <= n2 && e2 * e2 * e2 <= g->newton_acc2 * n2 * n2;
 }
 
+/* Where one scissor's Newton is: scissor_newton_pass advances it by one evaluation. */
+typedef struct {
+    tse_real a, b;  /* the slides reached */
+    int it;         /* passes made */
+    int iterations; /* Newton steps taken (one to three a pass) */
+} scissor_run;
+
+/* scissor_newton_pass's answer while the iteration goes on (besides -1, 0 and 1). */
+enum { SCISSOR_GOING = 2 };
+
+/* One evaluation of scissor_newton and the steps after it: SCISSOR_GOING with r advanced, or
+ * scissor_newton's answer.  Scissors are independent, so a caller may advance several in turn
+ * (tse_ik), each ending as scissor_newton would alone. */
+static TSE_ALWAYS_INLINE int scissor_newton_pass(const tse_geometry *g, const scissor_consts *k, tse_real rho2,
+                                                 int max_iter, int flags, scissor_run *r,
+                                                 tse_scissor_solution *out)
+{
+    scissor_point pt;
+    scissor_eval_point(k, r->a, r->b, &pt);
+    scissor_step s;
+    scissor_step_of(&pt, &s);
+    if (s.n2 <= g->newton_acc2)
+        return scissor_describe(g, k, rho2, r->a, r->b, &pt, flags, out);
+    if (r->it == max_iter)
+        return -1;
+    r->it++;
+    scissor_step_quad(k, &s);
+    if (s.n2 <= g->newton_regime2) {
+        scissor_second t;
+        scissor_second_of(k, &pt, &s, &t);
+        r->a -= s.da + t.ea2;
+        r->b -= s.db + t.eb2;
+        r->iterations += 2;
+        if (TSE_R(16.0) * t.e2 <= s.n2) {
+            if (scissor_settles(g, s.n2, t.e2))
+                return scissor_describe_settled(g, k, r->a, r->b, flags, out);
+            /* Short of that, the residual Q(n_2) left by the second step, with the second step's
+             * factorisation: the error left is then about K n_2 n_3, K about n_2 / n_1^2. */
+            const tse_real a2 = t.ea2 * t.ea2, b2 = t.eb2 * t.eb2;
+            const tse_real r1 = a2 - b2;
+            const tse_real r2 = a2 - k->g * ((a2 + b2) + k->c2 * (t.ea2 * t.eb2));
+            const tse_real ea3 = (t.m22 * r1 + t.eb * r2) * t.inv2;
+            const tse_real eb3 = (t.ea * r2 - t.m21 * r1) * t.inv2;
+            const tse_real e3 = ea3 * ea3 + eb3 * eb3;
+            r->a -= ea3;
+            r->b -= eb3;
+            r->iterations += 1;
+            if (TSE_R(16.0) * e3 <= t.e2 && t.e2 * t.e2 * e3 <= g->newton_acc2 * s.n2 * s.n2)
+                return scissor_describe_settled(g, k, r->a, r->b, flags, out);
+        }
+        return SCISSOR_GOING;
+    }
+    tse_real da = s.da, db = s.db;
+    if (s.n2 <= g->newton_max2) {
+        da += (pt.m22 * s.q1 + pt.eb * s.q2) * s.inv;
+        db += (pt.ea * s.q2 - pt.m21 * s.q1) * s.inv;
+    } else {
+        if (!(s.n2 < (tse_real)INFINITY))
+            return -1;
+        const tse_real t = g->step_max / tse_sqrt(s.n2);
+        da *= t;
+        db *= t;
+    }
+    r->a -= da;
+    r->b -= db;
+    r->iterations += 1;
+    return SCISSOR_GOING;
+}
+
 /* Newton from (s_a, s_b) with steps bounded by step_max, then scissor_describe on the point it
  * ends on, from the evaluation it has in hand there.
  *
@@ -220,71 +294,23 @@ static inline int scissor_settles(const tse_geometry *g, tse_real n2, tse_real e
  * the residual check of scissor_describe wherever the iteration ends on an evaluation; after the
  * steps from one evaluation the residual is known (scissor_describe_settled).  flags as
  * scissor_describe's and scissor_describe_settled's.  Returns -1 when Newton gives up (out and
- * (s_a, s_b) untouched), else the verdict on the point, left in (s_a, s_b).  scissor_warm_end
- * is this function's first pass, for three scissors side by side. */
+ * (s_a, s_b) untouched), else the verdict on the point, left in (s_a, s_b).  It is a loop of
+ * scissor_newton_pass; scissor_warm_steps and scissor_warm_end are its first pass, split. */
 static TSE_ALWAYS_INLINE int scissor_newton(const tse_geometry *g, const scissor_consts *k, tse_real rho2, tse_real *s_a,
-                                 tse_real *s_b, int max_iter, int flags, int *iterations, tse_scissor_solution *out)
+                                            tse_real *s_b, int max_iter, int flags, int *iterations,
+                                            tse_scissor_solution *out)
 {
-    tse_real a = *s_a, b = *s_b;
-    scissor_point pt;
-    for (int it = 0;; ++it) {
-        scissor_eval_point(k, a, b, &pt);
-        scissor_step s;
-        scissor_step_of(k, &pt, &s);
-        if (s.n2 <= g->newton_acc2)
-            break;
-        if (it == max_iter)
-            return -1;
-        if (s.n2 <= g->newton_regime2) {
-            scissor_second t;
-            scissor_second_of(k, &pt, &s, &t);
-            a -= s.da + t.ea2;
-            b -= s.db + t.eb2;
-            *iterations += 2;
-            if (TSE_R(16.0) * t.e2 <= s.n2) {
-                if (scissor_settles(g, s.n2, t.e2)) {
-                    *s_a = a;
-                    *s_b = b;
-                    return scissor_describe_settled(g, k, a, b, flags, out);
-                }
-                /* Short of that, the residual Q(n_2) left by the second step, with the second
-                 * step's factorisation: the error left is then about K n_2 n_3, K about
-                 * n_2 / n_1^2. */
-                const tse_real a2 = t.ea2 * t.ea2, b2 = t.eb2 * t.eb2;
-                const tse_real r1 = a2 - b2;
-                const tse_real r2 = a2 - k->g * ((a2 + b2) + k->c2 * (t.ea2 * t.eb2));
-                const tse_real ea3 = (t.m22 * r1 + t.eb * r2) * t.inv2;
-                const tse_real eb3 = (t.ea * r2 - t.m21 * r1) * t.inv2;
-                const tse_real e3 = ea3 * ea3 + eb3 * eb3;
-                a -= ea3;
-                b -= eb3;
-                *iterations += 1;
-                if (TSE_R(16.0) * e3 <= t.e2 && t.e2 * t.e2 * e3 <= g->newton_acc2 * s.n2 * s.n2) {
-                    *s_a = a;
-                    *s_b = b;
-                    return scissor_describe_settled(g, k, a, b, flags, out);
-                }
-            }
-            continue;
-        }
-        tse_real da = s.da, db = s.db;
-        if (s.n2 <= g->newton_max2) {
-            da += (pt.m22 * s.q1 + pt.eb * s.q2) * s.inv;
-            db += (pt.ea * s.q2 - pt.m21 * s.q1) * s.inv;
-        } else {
-            if (!(s.n2 < (tse_real)INFINITY))
-                return -1;
-            const tse_real t = g->step_max / tse_sqrt(s.n2);
-            da *= t;
-            db *= t;
-        }
-        a -= da;
-        b -= db;
-        *iterations += 1;
+    scissor_run r = {*s_a, *s_b, 0, 0};
+    int v;
+    do
+        v = scissor_newton_pass(g, k, rho2, max_iter, flags, &r, out);
+    while (v == SCISSOR_GOING);
+    *iterations += r.iterations;
+    if (v >= 0) {
+        *s_a = r.a;
+        *s_b = r.b;
     }
-    *s_a = a;
-    *s_b = b;
-    return scissor_describe(g, k, rho2, a, b, &pt, flags, out);
+    return v;
 }
 
 /* scissor_newton's first pass from a seed, split in two so that a caller can run it for several
@@ -306,7 +332,8 @@ static inline void scissor_warm_steps(const tse_geometry *g, const tse_scissor_l
     scissor_second t;
     scissor_consts_of(g, loc, &k);
     scissor_eval_point(&k, s_a, s_b, &pt);
-    scissor_step_of(&k, &pt, &s);
+    scissor_step_of(&pt, &s);
+    scissor_step_quad(&k, &s);
     scissor_second_of(&k, &pt, &s, &t);
     w->n2 = s.n2;
     w->e2 = t.e2;
