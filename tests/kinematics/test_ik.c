@@ -744,6 +744,71 @@ static void test_status_order_across_scissors(void **state)
     expect_pose_status(&p, b1a3, TSE_BELOW, 1, "below on 1, alpha on 3");
 }
 
+/* tse_ik solves its three scissors side by side on an out-of-order host (scissor_newton_pass in
+ * turn, after a warm first pass); tse_scissor_solve solves one alone.  On the same ball joints and
+ * seeds they must end on the same slides, whatever path each scissor takes: settled by the warm
+ * pass, Newton from a seed far off or from home, the quartic fallback, or no solution.  (x86-64
+ * builds tse_ik a second time for CPUs with fused multiply-add: within rounding, not bit for bit.) */
+static void test_ik_scissors_as_solved_alone(void **state)
+{
+    (void)state;
+    tse_params p;
+    tse_params_default(&p);
+    tse_geometry g;
+    assert_int_equal(tse_geometry_init(&g, &p), TSE_PARAM_OK);
+    uint64_t seed = 0x5eed51deULL;
+    const double tol = IS_FLOAT ? 4e-6 : 1e-12;
+    int compared = 0, warm_kind[4] = {0, 0, 0, 0};
+    tse_real q_prev[6];
+    for (int k = 0; k < 6; ++k)
+        q_prev[k] = g.home_s;
+    for (int n = 0; n < 6000; ++n) {
+        tse_real pose[6] = {(tse_real)rng_range(&seed, -0.4, 0.4), (tse_real)rng_range(&seed, -0.4, 0.4),
+                            (tse_real)rng_range(&seed, 0.4, 1.7), (tse_real)rng_range(&seed, -0.5, 0.5),
+                            (tse_real)rng_range(&seed, -0.5, 0.5), (tse_real)rng_range(&seed, -0.8, 0.8)};
+        /* Seeds: none (home), the previous answer (its pose may be far), a millimetre or 10 cm off. */
+        const int kind = n % 4;
+        tse_real sq[6];
+        for (int k = 0; k < 6; ++k)
+            sq[k] = q_prev[k] + (tse_real)(kind == 2 ? rng_range(&seed, -1e-3, 1e-3)
+                                          : kind == 3 ? rng_range(&seed, -0.1, 0.1) : 0.0);
+        tse_ik_result r;
+        const tse_status st = tse_ik(&g, pose, kind == 0 ? NULL : sq, &r);
+        if (st == TSE_INVALID)
+            fail();
+        for (int i = 0; i < 3; ++i) {
+            const tse_real sa = kind == 0 ? g.home_s : sq[2 * i], sb = kind == 0 ? g.home_s : sq[2 * i + 1];
+            tse_scissor_solution sol;
+            const tse_status one = tse_scissor_solve(&g, i, r.C[i], sa, sb, &sol);
+            if (one != TSE_OK) {
+                /* No branch solution for this scissor alone: tse_ik has none either. */
+                if (!(isnan(r.q[2 * i]) && r.status != TSE_OK)) {
+                    print_error("pose %d scissor %d: alone %s, in tse_ik %s with %g %g\n", n, i + 1,
+                                tse_status_name(one), tse_status_name(r.status), (double)r.q[2 * i],
+                                (double)r.q[2 * i + 1]);
+                    fail();
+                }
+                continue;
+            }
+            if (isnan(r.q[2 * i]))
+                continue; /* a scissor before it failed its checks: tse_ik still solved it, below */
+            if (!(fabs((double)(r.q[2 * i] - sol.s_a)) <= tol && fabs((double)(r.q[2 * i + 1] - sol.s_b)) <= tol)) {
+                print_error("pose %d scissor %d seed kind %d: tse_ik %.17g %.17g, alone %.17g %.17g\n", n, i + 1, kind,
+                            (double)r.q[2 * i], (double)r.q[2 * i + 1], (double)sol.s_a, (double)sol.s_b);
+                fail();
+            }
+            compared++;
+        }
+        warm_kind[kind] += st == TSE_OK;
+        if (st == TSE_OK)
+            memcpy(q_prev, r.q, sizeof q_prev);
+    }
+    /* Enough of each kind of seed reached an answer for the comparison to mean something. */
+    for (int k = 0; k < 4; ++k)
+        assert_true(warm_kind[k] > 100);
+    assert_true(compared > 6000);
+}
+
 static void test_result_deterministic(void **state)
 {
     (void)state;
@@ -780,6 +845,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rotation_and_joints),
+        cmocka_unit_test(test_ik_scissors_as_solved_alone),
         cmocka_unit_test(test_residual_and_single_scissor),
         cmocka_unit_test(test_oracle_reproduces_worked_values),
         cmocka_unit_test(test_worked_values),
