@@ -147,7 +147,7 @@ static TSE_ALWAYS_INLINE void newton_side_by_side(const tse_geometry *g, const t
     const int flags = SCISSOR_LIMITS | SCISSOR_SKIP_WIDTH;
     scissor_consts kc[3];
     int going = 0;
-    /* Loops over all three (a fixed count the compiler unrolls), those before `from` idle. */
+    /* Over all three (a fixed count: fewer instructions than from `from`), those before it idle. */
     for (int i = 0; i < 3; ++i) {
         int iterations;
         nw->verdict[i] = 0;

@@ -8,8 +8,8 @@
 #include "tse/ik.h"
 
 /* The inverse and forward kinematics in two builds on an x86-64 host (GCC's function
- * multiversioning): the baseline's, and one for a CPU with fused multiply-add (every x86-64 of
- * the last decade), whose a * b + c is one instruction rounded once, as on the Cortex-M4F.  The
+ * multiversioning): the baseline's, and one for a CPU with fused multiply-add (most x86-64 since
+ * 2013), whose a * b + c is one instruction rounded once, as on the Cortex-M4F.  The
  * loader picks one when the program starts.  Most of a solve is such products and sums: the
  * second build runs about a third fewer instructions (scripts/kin_icount.sh).  Results differ
  * between the two in the last bits only, within every accuracy the contract states; one machine

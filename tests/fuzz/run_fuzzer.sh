@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Runs one libFuzzer target for a bounded time from the committed seed corpus, and prints its
-# figures (executions, coverage, corpus size).  New inputs go to a working corpus in the build
+# figures (executions, coverage, corpus size).  The target's regressions (SEED_DIR/../regressions)
+# run first with the seeds: the host build replays them too, but this build (Clang) computes as
+# some host CPUs do and the host build's CPU may not (kinematics/src/kin_internal.h, FMA).  New inputs go to a working corpus in the build
 # tree, never into the repository; a crash leaves its input in WORK/artifacts and fails.
 #   run_fuzzer.sh FUZZER NAME SECONDS SEED_DIR WORK_DIR [extra libFuzzer flags]
 set -euo pipefail
@@ -10,10 +12,12 @@ mkdir -p "$work/corpus" "$work/artifacts"
 log="$work/fuzz.log"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+regressions=()
+[ -d "$seeds/../regressions" ] && regressions=("$seeds/../regressions")
 start=$(date +%s)
 set +e
 "$fuzzer" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2048 -print_final_stats=1 \
-  -artifact_prefix="$work/artifacts/" "$@" "$work/corpus" "$seeds" >"$log" 2>&1
+  -artifact_prefix="$work/artifacts/" "$@" "$work/corpus" "$seeds" "${regressions[@]}" >"$log" 2>&1
 rc=$?
 set -e
 end=$(date +%s)
@@ -30,6 +34,6 @@ if [ "$rc" -ne 0 ]; then
   echo "fuzz $name: FAILED (exit $rc); input kept in $work/artifacts/:" >&2
   ls -1 "$work/artifacts" >&2 || true
   echo "fuzz $name: reproduce with: $fuzzer $work/artifacts/<file>; once fixed, add the file" \
-       "to tests/fuzz/regressions/$name/ so that the host build replays it" >&2
+       "to tests/fuzz/$name/regressions/ so that the host build replays it" >&2
   exit "$rc"
 fi
