@@ -170,7 +170,11 @@ static void run(const precision *P, const kin_case *c)
     double q[6];
     for (int k = 0; k < 6; ++k)
         q[k] = c->fk_mode == FK_SLIDES_ANY ? c->fk_slides[k] : r.q[k] + c->fk_slides[k];
-    const int at_answer = clear_ok && c->fk_mode == FK_SLIDES_SAME && c->fk_seed_at_pose;
+    /* FK seeded at IK's answer must take it, where the IK is held to its accuracy: near a
+     * scissor's bifurcation (cond(M) > 100 with mu fine, the contract gap of docs/reliability.md)
+     * a float IK from q itself can land 9e-6 m from q (cond 4,400 seen), and so refuse the seed. */
+    const int at_answer = clear_ok && c->fk_mode == FK_SLIDES_SAME && c->fk_seed_at_pose &&
+                          ref_well_conditioned(&d, r.pose, r.q);
     side_fk f;
     P->fk(q, c->fk_seeded ? c->fk_seed : NULL, &f);
     ref_context("%s FK of " F6 " seed %s " F6 " gave %s " F6, P->name, V6(f.q), c->fk_seeded ? "" : "(none)",

@@ -204,6 +204,22 @@ void ref_slide_errors(const ref_design *d, const double pose_d[6], const double 
     }
 }
 
+int ref_well_conditioned(const ref_design *d, const double pose_d[6], const double q_d[6])
+{
+    orc_real pose[6], C[3][3];
+    widen(pose_d, pose, 6);
+    orc_joints(&d->g, pose, C);
+    for (int i = 0; i < 3; ++i) {
+        orc_real sa = q_d[2 * i], sb = q_d[2 * i + 1], F[2], M[2][2];
+        if (!exact_slides(d, i, C[i], &sa, &sb))
+            return 0;
+        orc_residual(&d->g, i, C[i], sa, sb, F, M);
+        if (!(condition(M) <= MAX_COND))
+            return 0;
+    }
+    return 1;
+}
+
 int ref_out_of_reach(const ref_design *d, const double pose_d[6], int i)
 {
     /* F1 = 0 makes the apex equidistant from A and B, and F2 = 0 then gives |CA|^2 = L^2 + g w^2

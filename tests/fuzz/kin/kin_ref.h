@@ -31,6 +31,10 @@ void ref_slide_errors(const ref_design *d, const double pose[6], const double q[
 
 /* Whether scissor i (0-based) cannot reach its ball joint at this pose with any slides: a joint
  * further from the slide origin than the scissor can stretch (kin_ref.c derives the bound). */
+/* Whether every scissor's M, at the exact slides near q, has a condition number of at most the
+ * bound under which ref_check_accepted holds the accuracy (0 when a slide does not settle). */
+int ref_well_conditioned(const ref_design *d, const double pose[6], const double q[6]);
+
 int ref_out_of_reach(const ref_design *d, const double pose[6], int i);
 
 /* Whether the reference's verdict on this pose is to be compared: a plausible design and a pose
