@@ -189,10 +189,21 @@ static int enclose_scissor(const tse_geometry *g, int i, const tse_real C[3], co
     const tse_real n1 = (tse_fabs(m00) + e00) * (tse_fabs(m00) + e00) + (tse_fabs(m01) + e01) * (tse_fabs(m01) + e01);
     const tse_real n2 = (tse_fabs(m10) + e10) * (tse_fabs(m10) + e10) + (tse_fabs(m11) + e11) * (tse_fabs(m11) + e11);
     const tse_real mu_min = g->p.mu_min;
+    /* tse_ik's type-1 check also asks mu_guard / (mu n_min) of room for its slides' rounding
+     * (scissor_core.h, with n_min over M / 2's rows, a quarter of these): proven at the box's
+     * least mu and shortest row. */
+    const tse_real l00 = tse_fabs(m00) - e00 > TSE_R(0.0) ? tse_fabs(m00) - e00 : TSE_R(0.0);
+    const tse_real l01 = tse_fabs(m01) - e01 > TSE_R(0.0) ? tse_fabs(m01) - e01 : TSE_R(0.0);
+    const tse_real l10 = tse_fabs(m10) - e10 > TSE_R(0.0) ? tse_fabs(m10) - e10 : TSE_R(0.0);
+    const tse_real l11 = tse_fabs(m11) - e11 > TSE_R(0.0) ? tse_fabs(m11) - e11 : TSE_R(0.0);
+    const tse_real r1lo = l00 * l00 + l01 * l01, r2lo = l10 * l10 + l11 * l11;
+    const tse_real row_lo = (r1lo < r2lo ? r1lo : r2lo) * (TSE_R(1.0) - WIDEN);
+    const tse_real mu_lo = det_lo / tse_sqrt(n1 * n2) * (TSE_R(1.0) - WIDEN);
     *proven = d[2] - rho > TSE_R(0.0) && w2 - w2r >= g->w_lo * g->w_lo && w2 + w2r <= g->w_hi * g->w_hi &&
               sa - ca >= g->p.s_min && sa + ca <= g->p.s_max && sb - cb >= g->p.s_min &&
               sb + cb <= g->p.s_max && det_lo > TSE_R(0.0) &&
-              det_lo * det_lo >= mu_min * mu_min * n1 * n2 * (TSE_R(1.0) + WIDEN);
+              det_lo * det_lo >= mu_min * mu_min * n1 * n2 * (TSE_R(1.0) + WIDEN) &&
+              mu_lo * (mu_lo - mu_min) * row_lo >= TSE_R(4.0) * g->mu_guard * (TSE_R(1.0) + WIDEN);
 
     /* First derivatives: M q' = -2 (G1, G2), G1 = (s_B b - s_A a).C', G2 = (d - s_A a).C'. */
     const tse_real *d1 = jm->d1, *d2 = jm->d2;

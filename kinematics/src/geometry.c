@@ -61,6 +61,10 @@ tse_param_id tse_geometry_init(tse_geometry *g, const tse_params *p)
     const tse_real reach = (p->L + TSE_R(2.0) * g->l0 * tse_sqrt(TSE_R(2.0) / (TSE_R(1.0) + g->c))) *
                            (TSE_R(1.0) + TSE_R(16.0) * TSE_REAL_EPS);
     g->reach2 = reach * reach;
+    /* The slides carry the rounding of F's terms, of the size of (L + r_act + r_top)^2, through M's
+     * inverse; scissor_core.h says how that bounds mu's error. */
+    const tse_real span = p->L + g->r_act + g->r_top;
+    g->mu_guard = TSE_REAL_EPS * span * span;
     tse_newton_limits(g);
 
     /* Exact values at 0, 120 and 240 degrees keep the three scissors bit-for-bit symmetric. */

@@ -90,7 +90,7 @@ static tse_status check_scissor(const tse_geometry *g, const tse_real C[3], cons
         return TSE_ALPHA;
     if (!(s->s_a >= g->p.s_min && s->s_a <= g->p.s_max && s->s_b >= g->p.s_min && s->s_b <= g->p.s_max))
         return TSE_STROKE;
-    if (!(s->mu >= g->p.mu_min))
+    if (!scissor_mu_clear(g, s))
         return TSE_SINGULAR;
     return TSE_OK;
 }
@@ -132,8 +132,9 @@ static tse_status invalid(tse_ik_result *out)
 /* Newton from the seed for the scissors from `from` on that the warm pass does not settle (all of
  * them from home), side by side: one evaluation of each in turn (scissor_newton_pass), which an
  * out-of-order core overlaps, each ending as scissor_solve_fast would alone.  verdict[i] is
- * scissor_newton's (1: sol[i] is the solution; 0: Newton ended at run[i]'s slides, not on one
- * inside the limits; -1: it gave up), or 0 for a ball joint beyond any reach. */
+ * scissor_newton's (1: sol[i] is the solution, its iteration count in run[i]; 0: Newton ended at
+ * run[i]'s slides, not on one inside the limits; -1: it gave up), or 0 for a ball joint beyond any
+ * reach. */
 typedef struct {
     tse_scissor_solution sol[3];
     scissor_run run[3];
@@ -171,10 +172,6 @@ static TSE_ALWAYS_INLINE void newton_side_by_side(const tse_geometry *g, const t
                 continue;
             nw->verdict[i] =
                 scissor_newton_pass(g, &kc[i], loc[i].rho2, TSE_NEWTON_MAX_ITER, flags, &nw->run[i], &nw->sol[i]);
-            if (nw->verdict[i] == 1) {
-                nw->sol[i].iterations = nw->run[i].iterations;
-                nw->sol[i].fallback = 0;
-            }
             going |= nw->verdict[i] == SCISSOR_GOING;
         }
     }
@@ -239,9 +236,15 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
                 newton_side_by_side(g, loc, warm, seed, side_by_side, i, &nw);
                 newton_run = 1;
             }
-            sol = nw.sol[i];
             solved = nw.verdict[i] == 1;
             iterations = nw.run[i].iterations;
+            /* What the rest reads of a solution without the fallback (a whole copy costs more). */
+            sol.s_a = nw.sol[i].s_a;
+            sol.s_b = nw.sol[i].s_b;
+            sol.mu = nw.sol[i].mu;
+            sol.n_min = nw.sol[i].n_min;
+            sol.iterations = iterations;
+            sol.fallback = 0;
             /* Newton that gave up leaves the seed to the fallback, one that ended, its end. */
             if (nw.verdict[i] >= 0) {
                 a = nw.run[i].a;
@@ -271,7 +274,7 @@ tse_status tse_ik(const tse_geometry *g, const tse_real pose[6], const tse_real 
             else if (!(out->C[i][2] > TSE_R(0.0)))
                 st = TSE_BELOW;
             /* Without the fallback the solution is inside the stroke and the stops already. */
-            else if (!(sol.mu >= g->p.mu_min))
+            else if (!scissor_mu_clear(g, &sol))
                 st = TSE_SINGULAR;
             if (st == TSE_OK)
                 nn[i] = type2_normal(g, &frame, i, &loc[i], sol.s_a, sol.s_b, n[i]);

@@ -89,6 +89,26 @@ static inline int scissor_within_limits(const tse_geometry *g, const tse_scissor
     return scissor_in_stroke(g, s->s_a, s->s_b) && s->w >= g->w_lo && s->w <= g->w_hi;
 }
 
+/* The type-1 check of kinematics.md on a solution, with room for its slides' error.
+ *
+ * The solver's slides miss the exact ones by the rounding of F, whose terms are of the size of
+ * span^2 = (L + r_act + r_top)^2 (the ball joint's rounding enters through rho2, u and v alike),
+ * carried through M's inverse: |dq| <~ eps span^2 / sigma_min(M / 2).  mu is the sine of the angle
+ * between M's rows, and a row turns by at most its change over its length, so mu moves by about
+ * |dq| / sqrt(n_min); with sigma_min(M / 2) >= det(M / 2) / sqrt(n1 + n2) and det(M / 2) =
+ * mu sqrt(n1 n2), that is a few eps span^2 / (mu n_min).  Near a scissor's bifurcation row 1
+ * shrinks (to 6e-4 m where the kin fuzz target found float slides 0.3 mm off and mu 0.18 where the
+ * exact one is 0.033), and mu computed there means nothing.  Against a long-double solution over
+ * the workspace and around that pose the error stayed within 0.14 eps span^2 / (mu n_min), so
+ * mu_guard = eps span^2 gives seven times that: on the prototype's workspace near mu_min it asks
+ * 1e-4 to 6e-4 more of a float mu, 1e-12 of a double one.  Solutions lie on the det M > 0 sheet,
+ * so mu > 0 (or NaN, which fails), and with mu_guard > 0 the product form is
+ * mu - mu_guard / (mu n_min) >= mu_min, which implies mu >= mu_min. */
+static inline int scissor_mu_clear(const tse_geometry *g, const tse_scissor_solution *s)
+{
+    return (s->mu - g->p.mu_min) * (s->mu * s->n_min) >= g->mu_guard;
+}
+
 /* Fills everything but the iteration counts from the evaluation pt at (s_a, s_b), and returns 1
  * when the point solves the pair and lies on the physical sheet (det M > 0, positive slides),
  * and with SCISSOR_LIMITS in flags also inside the stroke and the stops.
@@ -107,6 +127,7 @@ static inline int scissor_describe(const tse_geometry *g, const scissor_consts *
     const tse_real n1 = pt->ea * pt->ea + pt->eb * pt->eb;
     const tse_real n2 = pt->m21 * pt->m21 + pt->m22 * pt->m22;
     out->mu = pt->det / tse_sqrt(n1 * n2);
+    out->n_min = n1 < n2 ? n1 : n2;
     const tse_real w = tse_sqrt(pt->w2);
     out->w = w;
     const tse_real scale = rho2 + g->L2 + tse_fabs(k->g) * pt->w2 + s_a * s_a + s_b * s_b;
@@ -132,7 +153,9 @@ static inline int scissor_describe_settled(const tse_geometry *g, const scissor_
     out->s_a = s_a;
     out->s_b = s_b;
     out->det = TSE_R(4.0) * det;
-    out->mu = det / tse_sqrt((ea * ea + eb * eb) * (m21 * m21 + m22 * m22));
+    const tse_real n1 = ea * ea + eb * eb, n2 = m21 * m21 + m22 * m22;
+    out->mu = det / tse_sqrt(n1 * n2);
+    out->n_min = n1 < n2 ? n1 : n2;
     if (!(flags & SCISSOR_SKIP_WIDTH))
         out->w = tse_sqrt(w2);
     return det > TSE_R(0.0) && s_a > TSE_R(0.0) && s_b > TSE_R(0.0) &&

@@ -165,6 +165,7 @@ static void fill_sol(const orc_geom *g, int i, const orc_real C[3], orc_real sa,
     s->det = M[0][0] * M[1][1] - M[0][1] * M[1][0];
     orc_real n1 = hypotl(M[0][0], M[0][1]), n2 = hypotl(M[1][0], M[1][1]);
     s->mu = (n1 > 0.0L && n2 > 0.0L) ? s->det / (n1 * n2) : 0.0L;
+    s->row2 = n1 < n2 ? n1 * n1 : n2 * n2;
     orc_real w2 = sa * sa + sb * sb + 2.0L * g->c * sa * sb;
     s->w = sqrtl(w2 > 0.0L ? w2 : 0.0L);
     s->resid = fabsl(F[0]) + fabsl(F[1]);
@@ -483,7 +484,9 @@ void orc_ik(const orc_geom *g, const orc_real pose[6], const orc_real *prefer_q,
             if (near(s->sa, p->s_min, tol->len) || near(s->sa, p->s_max, tol->len) ||
                 near(s->sb, p->s_min, tol->len) || near(s->sb, p->s_max, tol->len))
                 out->ambiguous = 1;
-            if (near(s->mu, p->mu_min, tol->mu))
+            const orc_real span = g->p.L + g->r_act + g->r_top;
+            if (near(s->mu, p->mu_min, tol->mu) ||
+                (s->mu > 0.0L && fabsl(s->mu - p->mu_min) * s->mu * s->row2 < tol->mu_noise * span * span))
                 out->ambiguous = 1;
             if (out->C[i][2] <= 0.0L)
                 st = TSE_BELOW;

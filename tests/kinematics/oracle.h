@@ -30,6 +30,7 @@ typedef struct {
     orc_real sa, sb;
     orc_real det;   /* det M */
     orc_real mu;    /* det M / (|row1| |row2|) */
+    orc_real row2;  /* the smaller of |row1|^2, |row2|^2 */
     orc_real w;     /* base width */
     orc_real resid; /* |F1| + |F2| after polishing */
 } orc_sol;
@@ -49,6 +50,12 @@ typedef struct {
     orc_real len; /* m: slides against the stroke, C.z against 0, slides against 0 */
     orc_real ang; /* rad: alpha against its stops */
     orc_real mu;  /* mu against mu_min and det M against 0 */
+    /* and further from mu_min by mu_noise span^2 / (mu row2), span = L + r_act + r_top: solved in
+     * a working precision of epsilon eps, the slides carry the rounding of F's terms (of size
+     * span^2) through M's inverse, which turns M's shorter row by up to their error over its length
+     * and so moves mu; a few eps span^2 / (mu row2) where M is well conditioned, and without
+     * bound where a row vanishes (a scissor's bifurcation) */
+    orc_real mu_noise;
     orc_real nu;  /* nu against nu_min */
 } orc_tol;
 

@@ -4,6 +4,7 @@
 #ifndef TSE_TEST_COMMON_H
 #define TSE_TEST_COMMON_H
 
+#include <float.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -49,11 +50,13 @@ static inline orc_tol test_orc_tol(void)
     t.len = 2e-5L;
     t.ang = 2e-4L;
     t.mu = 2e-4L;
+    t.mu_noise = 8.0L * FLT_EPSILON;
     t.nu = 2e-5L;
 #else
     t.len = 1e-8L;
     t.ang = 1e-7L;
     t.mu = 1e-7L;
+    t.mu_noise = 8.0L * DBL_EPSILON;
     t.nu = 1e-9L;
 #endif
     return t;

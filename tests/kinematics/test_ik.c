@@ -657,6 +657,88 @@ static void test_status_singular(void **state)
     expect_pose_status(&p, WORKED, TSE_SINGULAR, 1, "mu_min above every margin");
 }
 
+/* Near a scissor's bifurcation M's first row shrinks, the slides are pinned down loosely, and mu
+ * computed at slides a rounding away can be far from the exact one.  The kin fuzz target found
+ * float IK taking the pose `found` (the plate rolled past vertical, scissor 1's ball joint 2.6 nm
+ * from its mirror plane) with mu 0.18 at slides 0.3 mm off, where the exact mu is 0.033.  Around
+ * it, with the ball joint from 1 nm to 0.1 mm off the plane on either side, IK may call a pose
+ * singular that the exact solution would pass (it cannot tell them apart), but a pose it takes
+ * must have every exact mu at mu_min or above. */
+static void test_singular_near_bifurcation(void **state)
+{
+    (void)state;
+    tse_geometry g;
+    orc_geom og;
+    test_default_geometries(&g, &og);
+    const orc_tol tol = test_orc_tol();
+    const double found[6] = {0.73370051383972168, -0.0024879712145775557, 0.57664573192596436,
+                             -1.725638747215271,  0.0045101530849933624,  0.012245425023138523};
+    orc_real C0[3][3], f[6];
+    for (int k = 0; k < 6; k++)
+        f[k] = (orc_real)found[k];
+    orc_joints(&og, f, C0);
+    uint64_t seed = 33;
+    int taken = 0, below = 0, refused_above = 0;
+    for (int n = 0; n < 4000; n++) {
+        /* scissor 1's mirror plane is y = 0 (beta = 0): the joint at +-10^(-9..-4) m from it,
+         * moved within it and turned by up to a centimetre and ten milliradians */
+        orc_real C1[3] = {C0[0][0] + 0.001L * (orc_real)rng_range(&seed, -1.0, 1.0),
+                          (rng_unit(&seed) < 0.5 ? -1.0L : 1.0L) * powl(10.0L, (orc_real)rng_range(&seed, -9.0, -4.0)),
+                          C0[0][2] + 0.001L * (orc_real)rng_range(&seed, -1.0, 1.0)};
+        orc_real rpy[3], R[3][3];
+        for (int k = 0; k < 3; k++)
+            rpy[k] = f[3 + k] + 0.001L * (orc_real)rng_range(&seed, -1.0, 1.0);
+        if (n == 0) {
+            for (int k = 0; k < 3; k++) {
+                C1[k] = C0[0][k];
+                rpy[k] = f[3 + k];
+            }
+        }
+        orc_rotation(rpy[0], rpy[1], rpy[2], R);
+        tse_real pose[6];
+        set_pose(pose, (double)(C1[0] - og.r_top * R[0][0]), (double)(C1[1] - og.r_top * R[1][0]),
+                 (double)(C1[2] - og.r_top * R[2][0]), (double)rpy[0], (double)rpy[1], (double)rpy[2]);
+        if (n == 0)
+            set_pose(pose, found[0], found[1], found[2], found[3], found[4], found[5]);
+        tse_ik_result r;
+        tse_ik(&g, pose, NULL, &r);
+        orc_real po[6];
+        pose_to_orc(pose, po);
+        orc_result o;
+        orc_ik(&og, po, NULL, &tol, &o);
+        /* the exact verdict on mu alone: a scissor inside every other limit */
+        int exact_below = 0;
+        for (int i = 0; i < 3; i++)
+            exact_below |= o.st[i] == TSE_SINGULAR;
+        below += exact_below;
+        if (n == 0) {
+            assert_true(o.st[0] == TSE_SINGULAR && o.mu[0] < 0.04L);
+            assert_int_equal(r.status, TSE_SINGULAR);
+            assert_int_equal(r.scissor, 1);
+        }
+        if (r.status != TSE_OK) {
+            refused_above += r.status == TSE_SINGULAR && o.status == TSE_OK;
+            continue;
+        }
+        taken++;
+        orc_real q[6];
+        for (int k = 0; k < 6; k++)
+            q[k] = (orc_real)r.q[k];
+        orc_ik(&og, po, q, &tol, &o); /* the exact solution the library is on */
+        for (int i = 0; i < 3; i++) {
+            if (!(o.mu[i] >= (orc_real)g.p.mu_min - tol.mu)) {
+                print_error("pose " POSE_FMT ": taken, but scissor %d's exact mu is %.4Lg (IK's %.4g)\n",
+                            POSE_ARGS(pose), i + 1, o.mu[i], (double)r.mu[i]);
+                fail();
+            }
+        }
+    }
+    print_message("near the bifurcation: %d of 4000 taken, %d below mu_min exactly, %d refused though "
+                  "exactly above\n", taken, below, refused_above);
+    /* the sample reaches both sides */
+    assert_true(taken > 200 && below > 60);
+}
+
 static void test_status_degenerate(void **state)
 {
     (void)state;
@@ -858,6 +940,7 @@ int main(void)
         cmocka_unit_test(test_status_alpha),
         cmocka_unit_test(test_status_stroke),
         cmocka_unit_test(test_status_singular),
+        cmocka_unit_test(test_singular_near_bifurcation),
         cmocka_unit_test(test_status_degenerate),
         cmocka_unit_test(test_status_order),
         cmocka_unit_test(test_status_order_across_scissors),

@@ -28,6 +28,7 @@ static void test_float_ik_matches_double(void **state)
     tol.len = 2e-5L;
     tol.ang = 2e-4L;
     tol.mu = 2e-4L;
+    tol.mu_noise = 8.0L * FLT_EPSILON;
     tol.nu = 2e-5L;
     uint64_t seed = 8086;
     int compared = 0, status_compared = 0;

@@ -22,7 +22,8 @@
  *   its solution, so a chain of pieces from the start pose's slides follows one branch.
  * - The checks.  Over X and the ball joints' ball: C_z > 0 (below), the base width's square in
  *   [w_lo^2, w_hi^2] (the alpha stops), X inside the stroke, det M >= mu_min |row1| |row2| with the
- *   determinant bounded below and the row norms above (type 1), and the type-2 ratio: a Hadamard
+ *   determinant bounded below and the row norms above (type 1, with the room tse_ik leaves for its
+ *   slides' error at the least mu and the shortest row), and the type-2 ratio: a Hadamard
  *   ratio of rows normalised to length one changes by at most the sum of its rows' changes (the
  *   determinant is multilinear in rows and a matrix of unit rows has |det| <= 1), and a row of
  *   length n changed by e gives a unit row changed by at most 2 e / n.

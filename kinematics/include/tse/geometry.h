@@ -31,6 +31,10 @@ typedef struct {
     tse_real newton_acc2, newton_regime2, newton_max2;
     tse_real L2;
     tse_real reach2;      /* |C - O|^2 beyond which a scissor has no physical solution [m^2] */
+    /* [m^2]: mu computed at the solver's slides is within mu_guard / (mu n_min) of mu at the exact
+     * ones (tse_scissor_solution.n_min), so the type-1 check asks mu_guard of that much room
+     * (kinematics/src/scissor_core.h, scissor_mu_clear). */
+    tse_real mu_guard;
     tse_real home_pose[6];/* symmetric home: X = Y = 0, zero orientation, mid-range height */
     tse_real home_s;      /* every slide at home */
     tse_scissor_frame sc[3];

@@ -13,6 +13,8 @@ typedef struct {
     tse_real s_a, s_b;
     tse_real det;   /* det M (> 0 on the physical sheet) */
     tse_real mu;    /* type-1 margin: det M / (|row1| |row2|) */
+    tse_real n_min; /* the smaller squared norm of M's rows, over 4 [m^2]: how much the slides'
+                     * rounding can move mu (tse_geometry.mu_guard) */
     tse_real w;     /* base width */
     int iterations; /* Newton iterations */
     int fallback;   /* 1 when the quartic was needed */

@@ -1,6 +1,7 @@
 /* The reference checks of the kin target (kin_ref.h). */
 #include "kin_ref.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -38,6 +39,9 @@ void ref_design_init(ref_design *d, const double v[SIDE_NPARAMS], int is_float, 
     d->tol.len = (is_float ? 2e-5L : 1e-8L) * scale;
     d->tol.ang = is_float ? 2e-4L : 1e-7L;
     d->tol.mu = is_float ? 2e-4L : 1e-7L;
+    /* the slides' rounding moves mu by a few eps span^2 / (mu row2) (oracle.h): within eight of
+     * that is too close to call */
+    d->tol.mu_noise = 8.0L * (is_float ? FLT_EPSILON : DBL_EPSILON);
     d->tol.nu = is_float ? 2e-5L : 1e-9L;
 }
 
