@@ -147,7 +147,7 @@ static TSE_ALWAYS_INLINE void newton_side_by_side(const tse_geometry *g, const t
 {
     const int flags = SCISSOR_LIMITS | SCISSOR_SKIP_WIDTH;
     scissor_consts kc[3];
-    int going = 0;
+    unsigned going = 0; /* bit i: scissor i's Newton goes on */
     /* Over all three (a fixed count: fewer instructions than from `from`), those before it idle. */
     for (int i = 0; i < 3; ++i) {
         int iterations;
@@ -161,18 +161,17 @@ static TSE_ALWAYS_INLINE void newton_side_by_side(const tse_geometry *g, const t
             nw->verdict[i] = 1;
         } else if (loc[i].rho2 <= g->reach2) {
             scissor_consts_of(g, &loc[i], &kc[i]);
-            nw->verdict[i] = SCISSOR_GOING;
-            going = 1;
+            going |= 1u << i; /* its verdict comes from its last pass */
         }
     }
     while (going) {
-        going = 0;
         for (int i = 0; i < 3; ++i) {
-            if (nw->verdict[i] != SCISSOR_GOING)
+            if (!(going & (1u << i)))
                 continue;
             nw->verdict[i] =
                 scissor_newton_pass(g, &kc[i], loc[i].rho2, TSE_NEWTON_MAX_ITER, flags, &nw->run[i], &nw->sol[i]);
-            going |= nw->verdict[i] == SCISSOR_GOING;
+            if (nw->verdict[i] != SCISSOR_GOING)
+                going &= ~(1u << i);
         }
     }
 }
