@@ -65,6 +65,13 @@ static inline tse_real sup(ci x)
     return tse_fabs(x.c) + x.r;
 }
 
+/* The least |value| the interval stands for. */
+static inline tse_real mig(ci x)
+{
+    const tse_real m = tse_fabs(x.c) - x.r;
+    return m > TSE_R(0.0) ? m : TSE_R(0.0);
+}
+
 static inline tse_real dot3(const tse_real x[3], const tse_real y[3])
 {
     return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
@@ -181,22 +188,20 @@ static int enclose_scissor(const tse_geometry *g, int i, const tse_real C[3], co
     const tse_real ca = ra + IK_ACCURACY, cb = rb + IK_ACCURACY;
     const tse_real e00 = TSE_R(2.0) * (ca + rho), e01 = TSE_R(2.0) * (cb + rho);
     const tse_real e10 = k10a * ca + kgc * cb + TSE_R(2.0) * rho, e11 = k11b * cb + kgc * ca;
-    const ci Dc = sub(mul(mk(m00, e00), mk(m11, e11)), mul(mk(m01, e01), mk(m10, e10)));
+    const ci W00 = mk(m00, e00), W01 = mk(m01, e01), W10 = mk(m10, e10), W11 = mk(m11, e11);
+    const ci Dc = sub(mul(W00, W11), mul(W01, W10));
     const tse_real det_lo = Dc.c - Dc.r;
     const tse_real w2r = tse_fabs(TSE_R(2.0) * sa + TSE_R(2.0) * c * sb) * ca +
                          tse_fabs(TSE_R(2.0) * sb + TSE_R(2.0) * c * sa) * cb + ca * ca + cb * cb +
                          TSE_R(2.0) * tse_fabs(c) * ca * cb + TSE_R(8.0) * TSE_REAL_EPS * (sa * sa + sb * sb);
-    const tse_real n1 = (tse_fabs(m00) + e00) * (tse_fabs(m00) + e00) + (tse_fabs(m01) + e01) * (tse_fabs(m01) + e01);
-    const tse_real n2 = (tse_fabs(m10) + e10) * (tse_fabs(m10) + e10) + (tse_fabs(m11) + e11) * (tse_fabs(m11) + e11);
+    const tse_real n1 = sup(W00) * sup(W00) + sup(W01) * sup(W01);
+    const tse_real n2 = sup(W10) * sup(W10) + sup(W11) * sup(W11);
     const tse_real mu_min = g->p.mu_min;
     /* tse_ik's type-1 check also asks mu_guard / (mu n_min) of room for its slides' rounding
      * (scissor_core.h, with n_min over M / 2's rows, a quarter of these): proven at the box's
      * least mu and shortest row. */
-    const tse_real l00 = tse_fabs(m00) - e00 > TSE_R(0.0) ? tse_fabs(m00) - e00 : TSE_R(0.0);
-    const tse_real l01 = tse_fabs(m01) - e01 > TSE_R(0.0) ? tse_fabs(m01) - e01 : TSE_R(0.0);
-    const tse_real l10 = tse_fabs(m10) - e10 > TSE_R(0.0) ? tse_fabs(m10) - e10 : TSE_R(0.0);
-    const tse_real l11 = tse_fabs(m11) - e11 > TSE_R(0.0) ? tse_fabs(m11) - e11 : TSE_R(0.0);
-    const tse_real r1lo = l00 * l00 + l01 * l01, r2lo = l10 * l10 + l11 * l11;
+    const tse_real r1lo = mig(W00) * mig(W00) + mig(W01) * mig(W01);
+    const tse_real r2lo = mig(W10) * mig(W10) + mig(W11) * mig(W11);
     const tse_real row_lo = (r1lo < r2lo ? r1lo : r2lo) * (TSE_R(1.0) - WIDEN);
     const tse_real mu_lo = det_lo / tse_sqrt(n1 * n2) * (TSE_R(1.0) - WIDEN);
     *proven = d[2] - rho > TSE_R(0.0) && w2 - w2r >= g->w_lo * g->w_lo && w2 + w2r <= g->w_hi * g->w_hi &&

@@ -109,6 +109,16 @@ static inline int scissor_mu_clear(const tse_geometry *g, const tse_scissor_solu
     return (s->mu - g->p.mu_min) * (s->mu * s->n_min) >= g->mu_guard;
 }
 
+/* mu and n_min from det(M / 2) and M / 2's rows (ea, -eb) and (m21, m22): every factor of 2
+ * cancels in mu. */
+static inline void scissor_margin(tse_real det, tse_real ea, tse_real eb, tse_real m21, tse_real m22,
+                                  tse_scissor_solution *out)
+{
+    const tse_real n1 = ea * ea + eb * eb, n2 = m21 * m21 + m22 * m22;
+    out->mu = det / tse_sqrt(n1 * n2);
+    out->n_min = n1 < n2 ? n1 : n2;
+}
+
 /* Fills everything but the iteration counts from the evaluation pt at (s_a, s_b), and returns 1
  * when the point solves the pair and lies on the physical sheet (det M > 0, positive slides),
  * and with SCISSOR_LIMITS in flags also inside the stroke and the stops.
@@ -123,11 +133,7 @@ static inline int scissor_describe(const tse_geometry *g, const scissor_consts *
     out->s_a = s_a;
     out->s_b = s_b;
     out->det = TSE_R(4.0) * pt->det;
-    /* mu = det M / (|row 1| |row 2|), every factor of 2 cancelling. */
-    const tse_real n1 = pt->ea * pt->ea + pt->eb * pt->eb;
-    const tse_real n2 = pt->m21 * pt->m21 + pt->m22 * pt->m22;
-    out->mu = pt->det / tse_sqrt(n1 * n2);
-    out->n_min = n1 < n2 ? n1 : n2;
+    scissor_margin(pt->det, pt->ea, pt->eb, pt->m21, pt->m22, out);
     const tse_real w = tse_sqrt(pt->w2);
     out->w = w;
     const tse_real scale = rho2 + g->L2 + tse_fabs(k->g) * pt->w2 + s_a * s_a + s_b * s_b;
@@ -153,9 +159,7 @@ static inline int scissor_describe_settled(const tse_geometry *g, const scissor_
     out->s_a = s_a;
     out->s_b = s_b;
     out->det = TSE_R(4.0) * det;
-    const tse_real n1 = ea * ea + eb * eb, n2 = m21 * m21 + m22 * m22;
-    out->mu = det / tse_sqrt(n1 * n2);
-    out->n_min = n1 < n2 ? n1 : n2;
+    scissor_margin(det, ea, eb, m21, m22, out);
     if (!(flags & SCISSOR_SKIP_WIDTH))
         out->w = tse_sqrt(w2);
     return det > TSE_R(0.0) && s_a > TSE_R(0.0) && s_b > TSE_R(0.0) &&

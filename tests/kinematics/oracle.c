@@ -437,6 +437,7 @@ void orc_ik(const orc_geom *g, const orc_real pose[6], const orc_real *prefer_q,
     }
     orc_joints(g, pose, out->C);
     const orc_params *p = &g->p;
+    const orc_real span = p->L + g->r_act + g->r_top; /* tol->mu_noise's scale */
     int all_solved = 1;
     for (int i = 0; i < 3; i++) {
         orc_scissor_set set;
@@ -484,7 +485,6 @@ void orc_ik(const orc_geom *g, const orc_real pose[6], const orc_real *prefer_q,
             if (near(s->sa, p->s_min, tol->len) || near(s->sa, p->s_max, tol->len) ||
                 near(s->sb, p->s_min, tol->len) || near(s->sb, p->s_max, tol->len))
                 out->ambiguous = 1;
-            const orc_real span = g->p.L + g->r_act + g->r_top;
             if (near(s->mu, p->mu_min, tol->mu) ||
                 (s->mu > 0.0L && fabsl(s->mu - p->mu_min) * s->mu * s->row2 < tol->mu_noise * span * span))
                 out->ambiguous = 1;
