@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "move_text.h"
 #include "text.h"
 #include "traj_file.h" /* the wire's pose range */
 
@@ -66,6 +67,19 @@ static int parse_move(int argc, char **argv, move_args *a)
     return EXIT_OK;
 }
 
+/* The MOVE_INFO that follows a move's ACK, in words (nothing from a controller that sends none). */
+static const char *info_words(tlink *l, int seq)
+{
+    static char text[256];
+    text[0] = 0;
+    const uint64_t end = link_now_us() + 300000u;
+    proto_message m;
+    while (link_now_us() < end && !tsectl_interrupted)
+        if (link_recv(l, &m, 50) == 1 && m.msg == PM_MOVE_INFO && m.v[0] == seq)
+            return move_info_text(&m, text, sizeof text);
+    return text;
+}
+
 int check_move(int argc, char **argv, int *done)
 {
     (void)done;
@@ -92,7 +106,7 @@ int run_move(tlink *l, int argc, char **argv)
         ctl_print_reject(&rej);
     if (rc == EXIT_OK) {
         const double T = ack.v[4] * 1e-3;
-        printf("move accepted: %.3f s planned\n", T);
+        printf("move accepted: %.3f s planned%s\n", T, info_words(l, seq));
         rc = a.wait ? ctl_wait_rest(l, T, "moving", 1, NULL) : EXIT_OK;
     }
     /* Interrupted while waiting (for the answer too: the move may have been taken). */

@@ -84,6 +84,21 @@ def test_unreachable_pose_is_rejected_and_nothing_moves(ctl):
     assert motions() == before and ctl.status().state == "idle"
 
 
+def test_move_info_says_why_a_move_is_slower_than_asked(ctl):
+    ready(ctl)
+    start = plant_at_rest()
+    # 10 cm sideways in 0.2 s: the slides move about 1.1 m per m of y, so they would need several
+    # times their speed limit; the controller stretches the move and says which slide set the pace.
+    target = [start[0], start[1] + 0.1, *start[2:]]
+    planned = ctl.move(target, duration=0.2)
+    info = ctl.last_move
+    print(f"{planned:.3f} s planned, {info}")
+    assert planned > 0.2 and info.start == "rest"
+    assert info.bound in ("slide_vmax", "slide_amax") and 1 <= info.slide <= 6 and info.demand > 1.0
+    ctl.move(start, duration=2.0)
+    assert ctl.last_move == tcan.MoveInfo("rest", "asked", 0, 0.0)
+
+
 def test_short_trajectory_with_progress(ctl):
     start = plant_at_rest()
     n, rows, seen = 100, [], []

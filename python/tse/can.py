@@ -29,7 +29,7 @@ _pycan = need("can", "python3-can", "tse.can")
 
 from . import _protocol as _P
 
-__all__ = ["Controller", "Status", "Telemetry", "TseError", "Rejected", "Fault", "Timeout",
+__all__ = ["Controller", "Status", "Telemetry", "MoveInfo", "TseError", "Rejected", "Fault", "Timeout",
            "encode", "decode", "reject_words"]
 
 # --- The codec, driven by the table --------------------------------------------------------------
@@ -124,6 +124,13 @@ Telemetry.__doc__ = """One telemetry period: time (python-can's receive time of 
 slides (the six commanded slide positions A1, B1, A2, B2, A3, B3, m), pose (x, y, z in m, roll,
 pitch, yaw in rad, from the controller's forward kinematics; None before homing) and the state of
 the latest STATUS."""
+
+MoveInfo = namedtuple("MoveInfo", "start bound slide demand")
+MoveInfo.__doc__ = """How an accepted move starts ("rest", "blended" into the running move, or "after" it)
+and what set its pace ("asked", a plate limit's name such as "plate_vmax", or "slide_vmax" and
+"slide_amax" with the slide 1..6 (A1, B1, A2, B2, A3, B3) and what it would have needed without the
+stretch over its limit, 1.14 = 14 % over; slide 0 and demand 0 otherwise): the controller's
+MOVE_INFO, kept as Controller.last_move."""
 
 _AT_REST = ("idle", "disabled", "fault", "estop")
 _SLIDES = ("A1", "B1", "A2", "B2", "A3", "B3")
@@ -334,6 +341,7 @@ class Controller:
         self._send_lock = threading.Lock()
         self._cmd_lock = threading.RLock()
         self._status = None
+        self.last_move = None     # the MoveInfo of the latest move this object committed
         self._status_serial = 0
         self._answers = []        # (serial, name, fields) of ACK, REJECT and PARAM_VALUE, newest last
         self._serial = 0
@@ -436,7 +444,7 @@ class Controller:
             if name == "STATUS":
                 self._status = _status_of(v)
                 self._status_serial += 1
-            elif name in ("ACK", "REJECT", "PARAM_VALUE"):
+            elif name in ("ACK", "REJECT", "PARAM_VALUE", "MOVE_INFO"):
                 self._serial += 1
                 self._answers.append((self._serial, name, v))
                 del self._answers[:-512]
@@ -652,9 +660,25 @@ class Controller:
             with self._cmd_lock:
                 seq = (self._fresh_status().last_seq + 1) & 0xFF
                 self._send_pose(seq, p)
+                mark = self._mark()
                 ack = self._command("MOVE_COMMIT", seq=seq, kind=_enum_value("move_kind", kind), value=raw)
+                self.last_move = self._move_info(mark, seq)
             return ack["detail"] * 1e-3
         return self._motion(start, "moving", wait)
+
+    def _move_info(self, mark, seq):
+        """The MOVE_INFO of the move committed under seq (it follows the ACK), or None from a
+        controller that sends none."""
+        def pick():
+            for serial, name, v in self._answers:
+                if serial > mark and name == "MOVE_INFO" and v["seq"] == seq:
+                    return MoveInfo(_enum("move_start", v["start"]), _enum("move_bound", v["bound"]), v["slide"],
+                                    v["demand"] / 1000.0)
+            return None
+        try:
+            return self._wait_for(pick, min(self.timeout, 0.3), "MOVE_INFO")
+        except Timeout:
+            return None
 
     def _send_pose(self, seq, raw):
         self._send("POSE_A", seq=seq, x=raw[0], y=raw[1])

@@ -40,6 +40,20 @@ for t in "0.1 -0.05 1.1 0.1 -0.05 0.2" "-0.15 0.1 0.7 -0.05 0.08 -0.3" "0.0 0.0 
   check "move to $t" "[ $rc -eq 0 ] && near $t"
 done
 
+# A move asked faster than the slides allow says why it takes longer; one committed during another
+# says it was blended into it.
+$T move 0.0 0.1 1.45 0.0 0.0 0.0 --duration 0.2 --wait >out.txt 2>&1; rc=$?
+sed -n 's/^/  | /;1p' out.txt
+check "a move too fast for the slides is stretched and says which slide and limit" \
+  "[ $rc -eq 0 ] && grep -Eq 'move accepted: [0-9.]+ s planned, slower than asked: the slides set the pace \(unstretched, slide [AB][123] \(scissor [123]\) would need [0-9.]+ times its (speed|acceleration) limit' out.txt"
+$T move 0.0 0.0 1.35 0.0 0.0 0.0 --duration 2 >out.txt 2>&1
+sleep 0.5
+$T move 0.02 0.0 1.45 0.0 0.0 0.0 --duration 2 --wait >out2.txt 2>&1; rc=$?
+sed -n 's/^/  | /;1p' out2.txt
+check "a move committed during another: accepted, blended into the running move" \
+  "[ $rc -eq 0 ] && grep -q 'blended into the running move' out2.txt && near 0.02 0.0 1.45 0.0 0.0 0.0"
+$T move 0.0 0.0 1.45 0 0 0 --duration 1 --wait >/dev/null 2>&1
+
 # Unreachable: refused with its reason, and nothing moves.
 before=$(grep -c 'motion accepted' sim.log)
 $T move 0.8 0 1.0 0 0 0 >out.txt 2>&1; rc=$?
@@ -163,6 +177,24 @@ check "tse-sim's closing lines say how many control periods ran late, by how muc
    grep -Eq 'none of them ran late|ran late: the host scheduled tse-sim up to [0-9]+ ms behind.*the simulated motion is exact' sim.log"
 
 kill $dump # the DBC is node 1's
+
+# tse-sim --board-rules refuses a move committed during another, as the board does.
+tse-sim --iface vcan0 --node 3 --board-rules >board.log 2>&1 &
+bsim=$!
+sleep 0.5
+B="tsectl --iface vcan0 --node 3 --timeout 5000"
+$B heartbeat &
+bhb=$!
+$B enable >/dev/null 2>&1 && $B home --wait >/dev/null 2>&1
+$B move 0.0 0.0 1.3 0.0 0.0 0.0 --duration 2 >/dev/null 2>&1
+sleep 0.5
+$B move 0.02 0.0 1.4 0.0 0.0 0.0 --duration 2 >out.txt 2>&1; rc=$?
+sed -n 's/^/  | /;1p' out.txt
+check "tse-sim --board-rules: a move during another is refused (state), as on the board" \
+  "[ $rc -eq 3 ] && grep -q 'rejected: state: MOVE_COMMIT is not taken while the controller is moving' out.txt && \
+   grep -q \"the board's rules\" board.log"
+kill $bhb
+kill -INT $bsim
 
 # Two controllers answering as one node id: tsectl says so, naming the node.
 tse-sim --iface vcan0 --node 5 >twin1.log 2>&1 &
