@@ -40,8 +40,9 @@ PROFILE_VARIANTS = {"k1": [0.15, 0.4, 0.7, 1.0], "eta_deg": [-60.0, -30.0, 0.0, 
 MARGIN_ETAS = [-30.0, 60.0]
 PITCH_DEG = 20.0   # the tilted workspace drawn (the paper tilts by 75 degrees; see docs/analysis.md)
 PAPER_PITCH_DEG = 75.0  # the paper's Fig. 8-d tilt, counted only: the plate nearly in a scissor's plane
-# The stroke taken out of the picture: s_max = FREE_STROKE_L L / cos(eta), ten times the longest
-# slide travel a scissor of length L at the slide angle eta can ask for.
+# The stroke taken out of the picture: s_max = FREE_STROKE_L L / cos(eta), ten times the scale of a
+# slide's travel for a scissor of length L at the slide angle eta (on the axis s = l0 cos(alpha) /
+# cos(eta) with l0 <= L), so that no design of the k1 sweep reaches it.
 FREE_STROKE_L = 10.0
 # The stroke readings of the workspace: the design's s_max times these (the prototype's 0.9 m gives
 # 0.8, 0.85, 0.95 and 1 m, where the paper's 0.28 is found).
@@ -491,7 +492,7 @@ class Study:
         k2 = [r for r in self.sweep["k2"] if r["haf"] == r["haf"]]
         best = max(k2, key=lambda r: r["haf"])
         self.note(f"k2: HAF largest at k2 = {best['value']:.3g} deg ({best['haf']:.4f}); "
-                  + ", ".join(f"k2 = {r['value']:.3g}: HAF {fmt(r['haf'])} ws {fmt(r['workspace'])}"
+                  + ", ".join(f"k2 = {r['value']:.3g}: HAF {fmt(r['haf'])} workspace {fmt(r['workspace'])}"
                               for r in (k2[0], k2[len(k2) // 4], k2[len(k2) // 2], k2[3 * len(k2) // 4], k2[-1])))
         for key in ("k1", "k1_free", "k3", "k4"):
             rows = [r for r in self.sweep[key] if r["haf"] == r["haf"]]
