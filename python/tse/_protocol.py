@@ -237,7 +237,7 @@ PARAMS = (
     ("home_sw_4", "um", 0, 5000000, 200000, "where slide 4's homing switch trips: pressed at and below, released above; homing sets the slide's coordinate at the edge; once homed, a disagreement beyond 0.5 mm is a limit fault; a change needs homing again"),
     ("home_sw_5", "um", 0, 5000000, 200000, "where slide 5's homing switch trips: pressed at and below, released above; homing sets the slide's coordinate at the edge; once homed, a disagreement beyond 0.5 mm is a limit fault; a change needs homing again"),
     ("home_sw_6", "um", 0, 5000000, 200000, "where slide 6's homing switch trips: pressed at and below, released above; homing sets the slide's coordinate at the edge; once homed, a disagreement beyond 0.5 mm is a limit fault; a change needs homing again"),
-    ("step_pulse_ns", "ns", 100, 1000000, 2000, "STEP high time; refused unless the pulse ends within its step interrupt period and leaves a low time at least as long before the same slide's next step"),
+    ("step_pulse_ns", "ns", 100, 1000000, 2500, "STEP high time; refused unless the pulse ends within its step interrupt period and leaves a low time at least as long before the same slide's next step"),
     ("dir_setup_ns", "ns", 0, 1000000, 5000, "DIR stable before a STEP edge (rounded up to whole step interrupts, at least one)"),
     ("can_kbps", "kbit/s", 125, 1000, 500, "CAN bit rate: 125, 250, 500 or 1000; the board applies it at start-up, so it takes effect after PARAM_SAVE and a restart"),
 )
