@@ -29,6 +29,10 @@
  * (scripts/target_bench.sh), a parameter save's sector erase feeds the watchdog itself. */
 #define WATCHDOG_MS 2000u
 
+/* A host streaming a trajectory may have PROTO_TRAJ_WINDOW rows of four frames in flight: they
+ * must fit the receive ring with room to spare while the main loop validates a row. */
+_Static_assert(4u * PROTO_TRAJ_WINDOW <= CAN_RING_CAPACITY / 2u, "trajectory window: half the receive ring");
+
 /* Everything the board holds, in one place a debugger (and the boot test) can read. */
 typedef struct {
     fw_controller fw;

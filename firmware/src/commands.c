@@ -172,21 +172,39 @@ static void move_commit(fw_controller *c, const proto_message *m, uint8_t functi
     fw_send(c, PM_MOVE_INFO, info);
 }
 
+/* A REJECT of a trajectory row for its place among the trajectories (order, ended). */
+static void reject_row(fw_controller *c, uint8_t function, uint8_t seq, fw_reason r, uint8_t field, int32_t where)
+{
+    int32_t v[PROTO_MAX_FIELDS];
+    fw_reject_values(function, seq, r, field, NULL, v);
+    v[6] = where;
+    fw_send(c, PM_REJECT, v);
+}
+
 static void traj_commit(fw_controller *c, const proto_message *m, uint8_t function)
 {
     const uint8_t seq = (uint8_t)m->v[0];
+    const bool first = (m->v[2] & PROTO_TRAJ_FIRST) != 0, last = (m->v[2] & PROTO_TRAJ_LAST) != 0;
+    uint8_t field;
+    int32_t where;
+    fw_reason r = fw_traj_row_refusal(c, m, false, &field, &where);
+    if (r != FW_REASON_NONE) {
+        reject_row(c, function, seq, r, field, where);
+        return;
+    }
     tse_real to[6];
-    fw_reason r = commit_target(c, seq, to);
-    if (r == FW_REASON_NONE && c->state == FW_STATE_MOVING && c->src != FW_SRC_TRAJ)
+    r = commit_target(c, seq, to);
+    /* A trajectory starts only at rest; while one runs, its rows join it. */
+    if (r == FW_REASON_NONE && first && c->state != FW_STATE_IDLE)
         r = FW_REASON_STATE;
     if (r != FW_REASON_NONE) {
         fw_reject(c, function, seq, r, 0, NULL);
         return;
     }
-    if (c->state == FW_STATE_IDLE)
+    if (first)
         fw_traj_start(&c->traj, &c->lim, c->pose, c->q);
     fw_plan_result why;
-    if (fw_traj_push(&c->traj, &c->geom, &c->lim, to, (uint32_t)m->v[1], (m->v[2] & 1) != 0, &why) != 0) {
+    if (fw_traj_push(&c->traj, &c->geom, &c->lim, to, (uint32_t)m->v[1], last, &why) != 0) {
         fw_reject(c, function, seq, why.reason, 0, &why);
         /* Refused for its content (the pose, its timing), the number is spent, as for moves; a
          * full queue, or a trajectory that takes no more points (state), changes nothing. */
@@ -195,7 +213,8 @@ static void traj_commit(fw_controller *c, const proto_message *m, uint8_t functi
         return;
     }
     accept_commit(c, seq);
-    if (c->state == FW_STATE_IDLE)
+    fw_traj_run_took(c, seq, first, (uint8_t)m->v[3]);
+    if (first)
         fw_start_source(c, FW_SRC_TRAJ);
     fw_ack(c, function, seq, 0);
 }
@@ -269,6 +288,17 @@ void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
     }
     const bool has_seq = proto_table[m.msg].nfields > 0 && strcmp(proto_table[m.msg].fields[0].name, "seq") == 0;
     const uint8_t seq = has_seq ? (uint8_t)m.v[0] : 0;
+    if (m.msg == PM_TRAJ_COMMIT) {
+        /* A row of a trajectory that has ended is refused as such in every state: its host learns
+         * how it ended, and no row of it ever starts or joins another. */
+        uint8_t field;
+        int32_t where;
+        const fw_reason ended = fw_traj_row_refusal(c, &m, true, &field, &where);
+        if (ended != FW_REASON_NONE) {
+            reject_row(c, function, seq, ended, field, where);
+            return;
+        }
+    }
     const fw_reason r = fw_command_allowed(m.msg, c->state);
     if (r != FW_REASON_NONE) {
         if (!broadcast)

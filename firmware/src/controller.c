@@ -137,6 +137,7 @@ void fw_estop(fw_controller *c)
     c->homed = false; /* steps may have been lost under the abrupt stop: home again */
     c->pose_known = false;
     fw_traj_drop(&c->traj);
+    fw_traj_run_end(c, FW_TRAJ_END_FAULT, FW_FAULT_ESTOP);
     c->fault = FW_FAULT_ESTOP;
     c->pending_fault = FW_FAULT_NONE;
     fw_set_state(c, FW_STATE_ESTOP);
@@ -159,6 +160,7 @@ void fw_estop_complete(fw_controller *c)
 
 static void latch_fault(fw_controller *c, fw_fault f)
 {
+    fw_traj_run_end(c, FW_TRAJ_END_FAULT, f);
     c->fault = f;
     c->pending_fault = FW_FAULT_NONE;
     c->src = FW_SRC_NONE;
@@ -223,12 +225,26 @@ void fw_stop_motion(fw_controller *c)
             return;
     }
     if (c->src == FW_SRC_NONE) {
-        /* Nothing runs along the queue any more (at rest, or the last setpoints stepping out). */
+        /* Nothing runs along the queue any more (at rest, or the last setpoints stepping out: a
+         * trajectory that got there ran to its last row, or held its newest row and faulted). */
+        fw_traj_run_end_pending(c, FW_TRAJ_END_DONE);
         fw_traj_drop(&c->traj);
         return;
     }
     if (c->stopping)
         return;
+    if (c->src == FW_SRC_TRAJ) {
+        const bool clocked = c->run.clock;
+        /* From here on the trajectory takes no row: it ended now, by this stop or a fault. */
+        fw_traj_run_end_pending(c, FW_TRAJ_END_STOP);
+        if (!clocked) {
+            /* Its clock never started: the plate is at rest where it was. */
+            c->src = FW_SRC_NONE;
+            fw_traj_drop(&c->traj);
+            fw_set_state(c, FW_STATE_STOPPING);
+            return;
+        }
+    }
     fw_set_state(c, FW_STATE_STOPPING);
     /* Once a queued move has begun to blend in, the slides are on the sum of the two paths: the
      * stop must follow that path, for dropping the second move would send them back to the
@@ -368,12 +384,14 @@ static void run_source(fw_controller *c)
         /* The stream ran dry before its last point: hold its newest point, and fault. */
         last = true;
         c->pending_fault = FW_FAULT_UNDERRUN;
+        fw_traj_run_end(c, FW_TRAJ_END_FAULT, FW_FAULT_UNDERRUN);
     }
     tse_ik_result r;
     if (tse_ik(&c->geom, pose, c->q, &r) != TSE_OK) {
         /* Validation solved this path, so this is a defect: there is no pose to go on to. */
         c->src = FW_SRC_NONE;
         c->pending_fault = FW_FAULT_PLANNER;
+        fw_traj_run_end(c, FW_TRAJ_END_FAULT, FW_FAULT_PLANNER);
         return;
     }
     for (int k = 0; k < 6; ++k)
@@ -474,7 +492,9 @@ void fw_control_tick(fw_controller *c)
         fw_homing_tick(c);
         return;
     }
-    while (c->src != FW_SRC_NONE && stepgen_queued(&c->sg) < QUEUE_AHEAD) {
+    /* A trajectory whose queue is still filling holds the plate at rest. */
+    const bool priming = c->src == FW_SRC_TRAJ && fw_traj_run_priming(c);
+    while (!priming && c->src != FW_SRC_NONE && stepgen_queued(&c->sg) < QUEUE_AHEAD) {
         if (c->src == FW_SRC_JOINT)
             run_joint(c);
         else
@@ -490,6 +510,7 @@ void fw_control_tick(fw_controller *c)
     if (c->state == FW_STATE_MOVING || c->state == FW_STATE_STOPPING) {
         /* At rest: what a stop ramp left of the trajectory is not for running any more. */
         c->stopping = false;
+        fw_traj_run_end_pending(c, FW_TRAJ_END_DONE);
         fw_traj_drop(&c->traj);
         if (c->pending_fault != FW_FAULT_NONE)
             latch_fault(c, c->pending_fault);
@@ -556,9 +577,12 @@ static void send_telemetry(fw_controller *c)
 void fw_poll(fw_controller *c)
 {
     fw_estop_complete(c);
+    /* How a trajectory ended goes out before any row of the next is taken. */
+    fw_traj_run_report(c);
     hal_can_frame f;
     while (c->hal.can.receive(c->hal.can.ctx, &f) == 1)
         fw_handle_frame(c, &f);
+    fw_traj_run_report(c);
     const uint64_t t = now_us(c);
     if (t >= c->next_status_us) {
         send_status(c);

@@ -64,6 +64,16 @@ const fw_param_def fw_param_table[FP_COUNT] = {
     [FP_CAN_KBPS] = {"can_kbps", "kbit/s", 125, 1000, 500,
                      "CAN bit rate: 125, 250, 500 or 1000; the board applies it at start-up, so "
                      "it takes effect after PARAM_SAVE and a restart"},
+    /* The lead is what the host may fall behind by at the start, before the queue has filled: a
+     * row takes about 1 ms on a 500 kbit/s bus, but a host on a general-purpose OS stalls for tens
+     * of milliseconds (scheduling, Python's garbage collector, a loaded machine).  0.2 s covers a
+     * 100 ms stall twice over at the cost of a 0.2 s wait at rest; with rows 20 ms apart it is ten
+     * of the queue's 32 rows, and a queue that fills before it starts the clock anyway. */
+    [FP_TRAJ_LEAD] = {"traj_lead", "us", 0, 10000000, 200000,
+                      "streamed trajectories: the path the controller holds before the clock of the "
+                      "first row starts (or the last row, or a full queue); the plate waits at rest "
+                      "until then. 0.2 s covers host stalls (scheduling, garbage collection) of tens "
+                      "of ms several times over; a row takes about 1 ms on the bus"},
 };
 
 void fw_params_default(fw_param_set *s)
@@ -169,7 +179,9 @@ static uint32_t crc32(const uint8_t *p, size_t n)
 }
 
 #define RECORD_MAGIC 0x54534550u /* "PEST" little-endian: TSE Parameters */
-#define RECORD_LEN (4u + 2u + 4u * FP_COUNT + 4u)
+/* A record of n parameters: magic, n, a zero byte, the values, the CRC. */
+#define RECORD_LEN_OF(n) (4u + 2u + 4u * (unsigned)(n) + 4u)
+#define RECORD_LEN RECORD_LEN_OF(FP_COUNT)
 
 static void put32(uint8_t *p, uint32_t v)
 {
@@ -197,11 +209,16 @@ size_t fw_params_serialize(const fw_param_set *s, uint8_t *buf, size_t cap)
 
 int fw_params_deserialize(fw_param_set *s, const uint8_t *buf, size_t len)
 {
-    if (len != RECORD_LEN || get32(buf) != RECORD_MAGIC || buf[4] != FP_COUNT ||
-        get32(&buf[RECORD_LEN - 4u]) != crc32(buf, RECORD_LEN - 4u))
+    /* Parameters are only ever appended: a record an older firmware wrote holds the first n, and
+     * the ones it did not know take their defaults. */
+    if (len < RECORD_LEN_OF(1) || get32(buf) != RECORD_MAGIC)
+        return -1;
+    const unsigned n = buf[4];
+    if (n == 0 || n > FP_COUNT || len != RECORD_LEN_OF(n) || get32(&buf[len - 4u]) != crc32(buf, len - 4u))
         return -1;
     fw_param_set next;
-    for (int i = 0; i < FP_COUNT; ++i)
+    fw_params_default(&next);
+    for (unsigned i = 0; i < n; ++i)
         next.v[i] = (int32_t)get32(&buf[6 + 4 * i]);
     if (fw_params_check(&next) >= 0)
         return -1;

@@ -41,6 +41,8 @@ const proto_enum_entry proto_reason_names[] = {
     {FW_REASON_PARAM_SET, "param_set"},
     {FW_REASON_STORAGE, "storage"},
     {FW_REASON_TIMING, "timing"},
+    {FW_REASON_ORDER, "order"},
+    {FW_REASON_ENDED, "ended"},
     {0, 0},
 };
 
@@ -77,6 +79,14 @@ const proto_enum_entry proto_move_bound_names[] = {
     {0, 0},
 };
 
+const proto_enum_entry proto_traj_end_names[] = {
+    {FW_TRAJ_END_NONE, "none"},
+    {FW_TRAJ_END_DONE, "done"},
+    {FW_TRAJ_END_STOP, "stop"},
+    {FW_TRAJ_END_FAULT, "fault"},
+    {0, 0},
+};
+
 const proto_enum_def proto_enums[] = {
     {proto_state_names, "state", "state"},
     {proto_fault_names, "fault", "fault"},
@@ -85,6 +95,7 @@ const proto_enum_def proto_enums[] = {
     {proto_move_kind_names, "move_kind", "move kind"},
     {proto_move_start_names, "move_start", "move start"},
     {proto_move_bound_names, "move_bound", "move bound"},
+    {proto_traj_end_names, "traj_end", "trajectory end (`TRAJ_END.ended`, `REJECT` `ended`)"},
     {0, 0, 0},
 };
 
@@ -121,7 +132,11 @@ const proto_def proto_table[PM_COUNT] = {
        "for kinematics, the position of the first failing point along the path (0..1000); for "
        "timing, the demand against the limit, per mille of the limit (1000 = at the limit, 1350 = "
        "35 % over; capped at 65535)"}},
-     "Every refused command gets one. Nothing of a refused command is applied."},
+     "Every refused command gets one. Nothing of a refused command is applied. For order, field is the "
+     "sequence number the running trajectory expects next. For ended, field is how the row's trajectory "
+     "ended (a traj_end value: 0 none, no such trajectory ran; 1 done; 2 stop; 3 fault) plus 16 times "
+     "the fault that ended it (as in STATUS), and where is how long before this row came it ended, in "
+     "ms (capped at 65535): for an underrun, how late the host was with the row the controller lacked."},
     {PM_ACK, 0x04, "ACK", PROTO_TO_HOST, 8, 5,
      {{"function", PF_U8, 0, 0, 127, "", 1.0, 0, "function code of the accepted message"},
       {"seq", PF_U8, 1, 0, 255, "", 1.0, 0, "its sequence number"},
@@ -163,11 +178,21 @@ const proto_def proto_table[PM_COUNT] = {
      "Move to the staged pose of this sequence number, straight in position with the orientation "
      "interpolated. Applied only if all three parts of this sequence arrived and it is newer than "
      "the last accepted; the whole path is validated before the first step."},
-    {PM_TRAJ_COMMIT, 0x0E, "TRAJ_COMMIT", PROTO_TO_CONTROLLER, 6, 3,
+    {PM_TRAJ_COMMIT, 0x0E, "TRAJ_COMMIT", PROTO_TO_CONTROLLER, 7, 4,
      {SEQ(0),
-      {"dt", PF_U32, 1, 1000, 60000000, "s", 1e-6, 0, "time from the previous point"},
-      {"flags", PF_U8, 5, 0, 1, "", 1.0, 0, "bit 0: last point of the trajectory"}},
-     "Queue the staged pose of this sequence number as a timed trajectory point."},
+      {"dt", PF_U32, 1, 1000, 60000000, "s", 1e-6, 0,
+       "time from the previous row (the first row: from the trajectory's start)"},
+      {"flags", PF_U8, 5, 0, 3, "", 1.0, 0,
+       "bit 0: the trajectory's last row; bit 1: its first row, which starts it"},
+      {"traj", PF_U8, 6, 0, 255, "", 1.0, 0,
+       "the trajectory's identity: its first row's sequence number (the first row carries its own)"}},
+     "Queue the staged pose of this sequence number as a row of a timed trajectory. A trajectory starts "
+     "with a row flagged first, taken only while idle; every later row carries its identity and the "
+     "sequence number after its previous row's (else order, nothing taken: a host with several rows in "
+     "flight sends again from the first refused one). Its clock starts, with the plate at rest until "
+     "then, once the controller holds traj_lead of it, its last row, or a full queue; a row of a "
+     "trajectory that has ended is refused ended, whatever the state, and never starts another. See "
+     "Streaming a trajectory, above."},
     {PM_PARAM_GET, 0x0F, "PARAM_GET", PROTO_TO_CONTROLLER, 2, 1,
      {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, "parameter id"}}, "Read a parameter."},
     {PM_PARAM_SET, 0x10, "PARAM_SET", PROTO_TO_CONTROLLER, 6, 2,
@@ -231,4 +256,13 @@ const proto_def proto_table[PM_COUNT] = {
        "capped at 65535); 0 otherwise"}},
      "Sent right after the ACK of an accepted MOVE_COMMIT (whose detail is the planned duration): "
      "how the move starts and what set its pace."},
+    {PM_TRAJ_END, 0x28, "TRAJ_END", PROTO_TO_HOST, 6, 4,
+     {{"traj", PF_U8, 0, 0, 255, "", 1.0, 0, "the trajectory's identity (its first row's sequence number)"},
+      {"ended", PF_U8, 1, 1, FW_TRAJ_END_COUNT - 1, "", 1.0, proto_traj_end_names, "how it ended"},
+      {"fault", PF_U8, 2, 0, FW_FAULT_COUNT - 1, "", 1.0, proto_fault_names,
+       "for fault, the fault that ended it (underrun: the host fell behind; estop; ...); none otherwise"},
+      {"rows", PF_U24, 3, 0, 16777215, "", 1.0, 0,
+       "rows it took (capped); after an underrun, the row it lacked is the next one"}},
+     "Sent once when a trajectory ends: when it ran to its last row (at rest), or the moment a STOP, a "
+     "fault or an e-stop ends it (the robot then stops along the path)."},
 };

@@ -15,7 +15,7 @@ static const struct {
 } micro_units[] = {
     {"um", "m"},         {"urad", "rad"},       {"ppm", ""},
     {"um/s", "m/s"},     {"um/s^2", "m/s^2"},   {"um/s^3", "m/s^3"},
-    {"urad/s", "rad/s"}, {"urad/s^2", "rad/s^2"},
+    {"urad/s", "rad/s"}, {"urad/s^2", "rad/s^2"}, {"us", "s"},
 };
 
 void param_si_key(int id, param_key *k)

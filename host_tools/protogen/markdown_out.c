@@ -37,6 +37,22 @@ static void intro(FILE *out)
                  "`incomplete`, and a stray part can never lock the host out); a part whose number is not\n"
                  "newer than the last accepted commit is refused `stale` and changes nothing.\n"
                  "A commit refused for its content spends its number.\n\n");
+    fprintf(out, "### Streaming a trajectory\n\n"
+                 "A trajectory is a run of `TRAJ_COMMIT` rows. Its first row carries flag bit 1 (first) and an\n"
+                 "identity the host chooses (`traj`; tsectl and tse.can use the first row's sequence number), and\n"
+                 "is taken only while idle; every later row carries the same identity and the sequence number\n"
+                 "after its previous row's, else it is refused `order` (nothing taken) or, once the trajectory\n"
+                 "has ended, `ended` in any state (saying how it ended and how long before the row came), so a\n"
+                 "row of a stopped trajectory never starts or joins another. The controller starts the\n"
+                 "trajectory's clock (`t = 0` of its first row's `dt`) once its queue holds `traj_lead` of path,\n"
+                 "or the last row (flag bit 0), or the queue is full; until then the plate is at rest. Once\n"
+                 "running, a queue that holds less path than a stop needs is an underrun: the controller stops\n"
+                 "along what it holds and latches `underrun`. `TRAJ_END` says once how each trajectory ended.\n\n"
+                 "A host keeps the queue ahead by sending rows as `ACK` and `STATUS` report free slots, with up\n"
+                 "to %d rows in flight (sent, not yet answered): %d rows are %d frames, at most half the board's\n"
+                 "receive ring. A row refused `queue_full` is sent again, in order, with the rows\n"
+                 "after it (refused `order` meanwhile), once there is room.\n\n",
+            PROTO_TRAJ_WINDOW, PROTO_TRAJ_WINDOW, 4 * PROTO_TRAJ_WINDOW);
     fprintf(out, "In the message tables, a field's physical value is its raw value times its \"one raw count\";\n"
                  "`-` marks a plain number or code.\n");
 }

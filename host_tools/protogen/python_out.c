@@ -143,8 +143,11 @@ int gen_python(FILE *out)
                  "#   cmake --build <build dir> --target protocol_docs\n"
                  "# Identifiers: id = function << NODE_BITS | node; integers little-endian; node 0 addresses\n"
                  "# every controller (only ESTOP and STOP honour it).\n\n"
-                 "NODE_BITS = %d\nNODE_MASK = 0x%02X\nBROADCAST = %u\n\n",
-            PROTO_NODE_BITS, PROTO_NODE_MASK, PROTO_BROADCAST);
+                 "NODE_BITS = %d\nNODE_MASK = 0x%02X\nBROADCAST = %u\n\n"
+                 "# TRAJ_COMMIT's flags, and the trajectory rows a host keeps in flight while it streams\n"
+                 "# (within the free slots ACK and STATUS report).\n"
+                 "TRAJ_LAST = %u\nTRAJ_FIRST = %u\nTRAJ_WINDOW = %d\n\n",
+            PROTO_NODE_BITS, PROTO_NODE_MASK, PROTO_BROADCAST, PROTO_TRAJ_LAST, PROTO_TRAJ_FIRST, PROTO_TRAJ_WINDOW);
     enumerations(out);
     if (messages(out) != 0)
         return -1;

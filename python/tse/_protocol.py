@@ -8,15 +8,22 @@ NODE_BITS = 4
 NODE_MASK = 0x0F
 BROADCAST = 0
 
+# TRAJ_COMMIT's flags, and the trajectory rows a host keeps in flight while it streams
+# (within the free slots ACK and STATUS report).
+TRAJ_LAST = 1
+TRAJ_FIRST = 2
+TRAJ_WINDOW = 4
+
 # Named values of the enumerated fields.
 ENUMS = {
     "state": {0: "boot", 1: "disabled", 2: "homing", 3: "idle", 4: "moving", 5: "stopping", 6: "fault", 7: "estop"},
     "fault": {0: "none", 1: "watchdog", 2: "limit", 3: "bus_off", 4: "planner", 5: "step_overrun", 6: "homing", 7: "estop", 8: "underrun", 9: "plant", 10: "hardware"},
-    "reason": {0: "none", 1: "bad_length", 2: "unknown", 3: "range", 4: "state", 5: "not_homed", 6: "incomplete", 7: "stale", 8: "kinematics", 9: "queue_full", 10: "param_unknown", 11: "param_range", 12: "param_set", 13: "storage", 14: "timing"},
+    "reason": {0: "none", 1: "bad_length", 2: "unknown", 3: "range", 4: "state", 5: "not_homed", 6: "incomplete", 7: "stale", 8: "kinematics", 9: "queue_full", 10: "param_unknown", 11: "param_range", 12: "param_set", 13: "storage", 14: "timing", 15: "order", 16: "ended"},
     "kin_status": {0: "ok", 1: "invalid", 2: "unreachable", 3: "below", 4: "alpha", 5: "stroke", 6: "singular", 7: "degenerate", 8: "noconverge"},
     "move_kind": {0: "duration", 1: "speed"},
     "move_start": {0: "rest", 1: "blended", 2: "after"},
     "move_bound": {0: "asked", 1: "plate_vmax", 2: "plate_amax", 3: "plate_jmax", 4: "plate_wmax", 5: "plate_dwmax", 6: "plate_jmax_angular", 7: "slide_vmax", 8: "slide_amax"},
+    "traj_end": {0: "none", 1: "done", 2: "stop", 3: "fault"},
 }
 
 # name: (function code, direction, length, fields); a field is
@@ -35,7 +42,7 @@ MESSAGES = {
          "function code of the refused message"),
         ("seq", "u8", 1, 0, 255, "", 1.0, None,
          "its sequence number (0 when it had none)"),
-        ("reason", "u8", 2, 0, 14, "", 1.0, "reason",
+        ("reason", "u8", 2, 0, 16, "", 1.0, "reason",
          "why"),
         ("scissor", "u8", 3, 0, 3, "", 1.0, None,
          "for kinematics, the first failing scissor (1..3); for timing, the scissor (1..3) of the slide over its limit; 0 otherwise"),
@@ -45,7 +52,7 @@ MESSAGES = {
          "for range, the index of the offending field (0 = its first, counting in byte order); for param_unknown, param_range and param_set, the parameter id (255 for an id above 255); for state, the controller's state when it refused (a state value as in STATUS); for timing, the slide over its limit, 1..6 for A1, B1, A2, B2, A3, B3, plus 16 when the limit is the acceleration rather than the speed"),
         ("where", "u16", 6, 0, 65535, "per mille", 1.0, None,
          "for kinematics, the position of the first failing point along the path (0..1000); for timing, the demand against the limit, per mille of the limit (1000 = at the limit, 1350 = 35 % over; capped at 65535)"),
-    ), "Every refused command gets one. Nothing of a refused command is applied."),
+    ), "Every refused command gets one. Nothing of a refused command is applied. For order, field is the sequence number the running trajectory expects next. For ended, field is how the row's trajectory ended (a traj_end value: 0 none, no such trajectory ran; 1 done; 2 stop; 3 fault) plus 16 times the fault that ended it (as in STATUS), and where is how long before this row came it ended, in ms (capped at 65535): for an underrun, how late the host was with the row the controller lacked."),
     "ACK": (0x04, "to_host", 8, (
         ("function", "u8", 0, 0, 127, "", 1.0, None,
          "function code of the accepted message"),
@@ -110,14 +117,16 @@ MESSAGES = {
         ("value", "u32", 2, 1, 3600000, "ms or um/s", 1.0, None,
          "for kind duration, the move's duration in ms; for kind speed, the plate's speed in um/s"),
     ), "Move to the staged pose of this sequence number, straight in position with the orientation interpolated. Applied only if all three parts of this sequence arrived and it is newer than the last accepted; the whole path is validated before the first step."),
-    "TRAJ_COMMIT": (0x0E, "to_controller", 6, (
+    "TRAJ_COMMIT": (0x0E, "to_controller", 7, (
         ("seq", "u8", 0, 0, 255, "", 1.0, None,
          "sequence number, echoed in ACK/REJECT"),
         ("dt", "u32", 1, 1000, 60000000, "s", 1e-06, None,
-         "time from the previous point"),
-        ("flags", "u8", 5, 0, 1, "", 1.0, None,
-         "bit 0: last point of the trajectory"),
-    ), "Queue the staged pose of this sequence number as a timed trajectory point."),
+         "time from the previous row (the first row: from the trajectory's start)"),
+        ("flags", "u8", 5, 0, 3, "", 1.0, None,
+         "bit 0: the trajectory's last row; bit 1: its first row, which starts it"),
+        ("traj", "u8", 6, 0, 255, "", 1.0, None,
+         "the trajectory's identity: its first row's sequence number (the first row carries its own)"),
+    ), "Queue the staged pose of this sequence number as a row of a timed trajectory. A trajectory starts with a row flagged first, taken only while idle; every later row carries its identity and the sequence number after its previous row's (else order, nothing taken: a host with several rows in flight sends again from the first refused one). Its clock starts, with the plate at rest until then, once the controller holds traj_lead of it, its last row, or a full queue; a row of a trajectory that has ended is refused ended, whatever the state, and never starts another. See Streaming a trajectory, above."),
     "PARAM_GET": (0x0F, "to_controller", 2, (
         ("param", "u16", 0, 0, 65535, "", 1.0, None,
          "parameter id"),
@@ -202,6 +211,16 @@ MESSAGES = {
         ("demand", "u16", 4, 0, 65535, "per mille", 1.0, None,
          "for slide_vmax and slide_amax, what that slide would have needed without the stretch (at the pace asked, or the plate limits' where slower), per mille of its limit (1140 = 14 % over; capped at 65535); 0 otherwise"),
     ), "Sent right after the ACK of an accepted MOVE_COMMIT (whose detail is the planned duration): how the move starts and what set its pace."),
+    "TRAJ_END": (0x28, "to_host", 6, (
+        ("traj", "u8", 0, 0, 255, "", 1.0, None,
+         "the trajectory's identity (its first row's sequence number)"),
+        ("ended", "u8", 1, 1, 3, "", 1.0, "traj_end",
+         "how it ended"),
+        ("fault", "u8", 2, 0, 10, "", 1.0, "fault",
+         "for fault, the fault that ended it (underrun: the host fell behind; estop; ...); none otherwise"),
+        ("rows", "u24", 3, 0, 16777215, "", 1.0, None,
+         "rows it took (capped); after an underrun, the row it lacked is the next one"),
+    ), "Sent once when a trajectory ends: when it ran to its last row (at rest), or the moment a STOP, a fault or an e-stop ends it (the robot then stops along the path)."),
 }
 
 # Parameter id: (name, wire unit, min raw, max raw, default raw, doc).
@@ -240,6 +259,7 @@ PARAMS = (
     ("step_pulse_ns", "ns", 100, 1000000, 2500, "STEP high time; refused unless the pulse ends within its step interrupt period and leaves a low time at least as long before the same slide's next step"),
     ("dir_setup_ns", "ns", 0, 1000000, 5000, "DIR stable before a STEP edge (rounded up to whole step interrupts, at least one)"),
     ("can_kbps", "kbit/s", 125, 1000, 500, "CAN bit rate: 125, 250, 500 or 1000; the board applies it at start-up, so it takes effect after PARAM_SAVE and a restart"),
+    ("traj_lead", "us", 0, 10000000, 200000, "streamed trajectories: the path the controller holds before the clock of the first row starts (or the last row, or a full queue); the plate waits at rest until then. 0.2 s covers host stalls (scheduling, garbage collection) of tens of ms several times over; a row takes about 1 ms on the bus"),
 )
 
 # Spelling: (parameter id, raw units per unit of this spelling, unit). A name without a
@@ -282,4 +302,5 @@ PARAM_SPELLINGS = {
     "step_pulse_ns": (31, 1.0, "ns"),
     "dir_setup_ns": (32, 1.0, "ns"),
     "can_kbps": (33, 1.0, "kbit/s"),
+    "traj_lead": (34, 1e+06, "s"),
 }

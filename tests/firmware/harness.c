@@ -14,6 +14,7 @@
 fake_hal F;
 fw_controller C;
 uint8_t seq;
+uint8_t traj_id;
 
 void start(void)
 {
@@ -68,6 +69,17 @@ void move_to(const double p[6], int32_t ms)
     stage(s, p);
     const int32_t m[3] = {s, 0, ms};
     send(PM_MOVE_COMMIT, m);
+}
+
+void traj_row(const double p[6], uint32_t dt_us, bool first, bool last)
+{
+    const uint8_t s = seq++;
+    if (first)
+        traj_id = s;
+    stage(s, p);
+    const int32_t v[4] = {s, (int32_t)dt_us, (first ? (int32_t)PROTO_TRAJ_FIRST : 0) | (last ? (int32_t)PROTO_TRAJ_LAST : 0),
+                          traj_id};
+    send(PM_TRAJ_COMMIT, v);
 }
 
 /* What the controller answered since tx index `from`: 'a' ack, 'r' reject, 0 nothing. */

@@ -28,6 +28,11 @@ void run(uint32_t ms);
 /* POSE_A, B and C of pose p under sequence number s. */
 void stage(uint8_t s, const double p[6]);
 void move_to(const double p[6], int32_t ms);
+/* A trajectory row: p staged and committed under the next sequence number, dt_us after the
+ * previous row.  `first` starts a trajectory whose identity is the row's own number (traj_id);
+ * the others carry traj_id. */
+extern uint8_t traj_id;
+void traj_row(const double p[6], uint32_t dt_us, bool first, bool last);
 /* What the controller answered since tx index `from` to `function`: 'a' ack, 'r' reject (its
  * reason in *reason), 0 nothing. */
 char answer(unsigned from, uint8_t function, uint8_t *reason);

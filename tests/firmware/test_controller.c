@@ -45,7 +45,7 @@ static void test_state_table(void **state)
             }
             case PM_TRAJ_COMMIT: {
                 stage(s, C.pose_known ? C.pose : NEAR);
-                const int32_t v[3] = {s, 50000, 1};
+                const int32_t v[4] = {s, 50000, PROTO_TRAJ_FIRST | PROTO_TRAJ_LAST, s};
                 send(PM_TRAJ_COMMIT, v);
                 break;
             }

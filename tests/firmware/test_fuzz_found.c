@@ -49,7 +49,7 @@ static void range_reject_carries_the_seq(void **state)
     assert_int_equal(r.v[2], FW_REASON_RANGE);
     assert_int_equal(r.v[1], 200);
     /* TRAJ_COMMIT seq 3, dt 0 (1 ms at least). */
-    r = reject_raw(0x0E1, 6, (const uint8_t[]){3, 0, 0, 0, 0, 0});
+    r = reject_raw(0x0E1, 7, (const uint8_t[]){3, 0, 0, 0, 0, 0, 3});
     assert_int_equal(r.v[2], FW_REASON_RANGE);
     assert_int_equal(r.v[1], 3);
     /* Frames without a sequence number, or whose length already refuses them: 0. */
@@ -127,14 +127,6 @@ static void homing_speed_held_to_the_slide_limit(void **state)
     assert_true(fastest <= 100);
 }
 
-/* Stages p and commits it as a trajectory point dt_us after the previous one. */
-static void point(const double p[6], uint32_t dt_us, bool last)
-{
-    const uint8_t s = seq++;
-    stage(s, p);
-    const int32_t v[3] = {s, (int32_t)dt_us, last ? 1 : 0};
-    send(PM_TRAJ_COMMIT, v);
-}
 
 static void stopped_trajectory_stays_stopped(void **state)
 {
@@ -147,7 +139,7 @@ static void stopped_trajectory_stays_stopped(void **state)
     const double z0 = p[2];
     for (int i = 1; i <= 30; ++i) {
         p[2] = z0 + 0.001 * i;
-        point(p, 50000, i == 30);
+        traj_row(p, 50000, i == 1, i == 30);
     }
     run(300);
     assert_int_equal(C.state, FW_STATE_MOVING);
@@ -178,7 +170,7 @@ static void traj_refused_for_state_keeps_its_number(void **state)
     const double z0 = p[2];
     for (int i = 1; i <= 4; ++i) {
         p[2] = z0 + 0.0005 * i;
-        point(p, 50000, i == 4);
+        traj_row(p, 50000, i == 1, i == 4);
     }
     run(50);
     assert_int_equal(C.state, FW_STATE_MOVING);
@@ -186,7 +178,7 @@ static void traj_refused_for_state_keeps_its_number(void **state)
     p[2] = z0 + 0.001;
     const uint8_t s = seq++;
     stage(s, p);
-    const int32_t v[3] = {s, 50000, 1};
+    const int32_t v[4] = {s, 50000, PROTO_TRAJ_LAST, traj_id};
     unsigned from = F.tx_count;
     send(PM_TRAJ_COMMIT, v);
     fw_poll(&C);
@@ -196,9 +188,16 @@ static void traj_refused_for_state_keeps_its_number(void **state)
     for (int i = 0; i < 100 && C.state != FW_STATE_IDLE; ++i)
         run(10);
     assert_int_equal(C.state, FW_STATE_IDLE);
-    /* At rest, the same commit again: its staged pose and its number are still good. */
+    /* At rest the same commit is a row of a trajectory that has ended: it never starts another. */
     from = F.tx_count;
     send(PM_TRAJ_COMMIT, v);
+    fw_poll(&C);
+    assert_int_equal(answer(from, proto_table[PM_TRAJ_COMMIT].function, &reason), 'r');
+    assert_int_equal(reason, FW_REASON_ENDED);
+    /* As the first row of a new trajectory: its staged pose and its number are still good. */
+    const int32_t again[4] = {s, 50000, PROTO_TRAJ_FIRST | PROTO_TRAJ_LAST, s};
+    from = F.tx_count;
+    send(PM_TRAJ_COMMIT, again);
     fw_poll(&C);
     assert_int_equal(answer(from, proto_table[PM_TRAJ_COMMIT].function, &reason), 'a');
     assert_int_equal(C.state, FW_STATE_MOVING);

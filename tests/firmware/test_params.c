@@ -57,7 +57,9 @@ static void test_board_parameters(void **state)
     fw_params_default(&s);
     /* Appended after homing_backoff (ids travel on the wire). */
     assert_int_equal(FP_HOME_SW_1, FP_HOMING_BACKOFF + 1);
-    assert_int_equal(FP_CAN_KBPS, FP_COUNT - 1);
+    assert_int_equal(FP_TRAJ_LEAD, FP_CAN_KBPS + 1);
+    assert_int_equal(FP_TRAJ_LEAD, FP_COUNT - 1);
+    assert_int_equal(s.v[FP_TRAJ_LEAD], 200000); /* 0.2 s */
     for (int k = 0; k < 6; ++k)
         assert_int_equal(s.v[FP_HOME_SW_1 + k], 200000);
     /* The Leadshine DM542's timing (User's Manual V1.0, section 10, Figure 11; docs/board.md):
@@ -144,6 +146,51 @@ static void test_record(void **state)
     assert_int_equal(fw_params_deserialize(&back, buf, n - 1), -1);
 }
 
+/* CRC-32 of IEEE 802.3 (reflected, polynomial 0xEDB88320), written out here: the record's check. */
+static uint32_t crc32_ieee(const uint8_t *p, size_t n)
+{
+    uint32_t c = 0xFFFFFFFFu;
+    for (size_t i = 0; i < n; ++i)
+        for (int k = 0; k < 8; ++k) {
+            const uint32_t bit = (c ^ (p[i] >> k)) & 1u;
+            c = (c >> 1) ^ (bit ? 0xEDB88320u : 0u);
+        }
+    return ~c;
+}
+
+/* A record written by a firmware that knew one parameter fewer (traj_lead appended since), laid
+ * out by hand: "PEST", the count, a zero byte, the values, the CRC.  It is read, and traj_lead
+ * takes its default; a count above this firmware's is refused. */
+static void test_older_record(void **state)
+{
+    (void)state;
+    fw_param_set s, back;
+    fw_params_default(&s);
+    s.v[FP_SLIDE_VMAX] = 120000;
+    const unsigned n = FP_COUNT - 1;
+    uint8_t buf[256];
+    size_t len = 0;
+    const uint8_t head[6] = {'P', 'E', 'S', 'T', (uint8_t)n, 0};
+    memcpy(buf, head, sizeof head);
+    len = sizeof head;
+    for (unsigned i = 0; i < n; ++i, len += 4)
+        for (int k = 0; k < 4; ++k)
+            buf[len + (size_t)k] = (uint8_t)((uint32_t)s.v[i] >> (8 * k));
+    const uint32_t crc = crc32_ieee(buf, len);
+    for (int k = 0; k < 4; ++k)
+        buf[len++] = (uint8_t)(crc >> (8 * k));
+    fw_params_default(&back);
+    back.v[FP_TRAJ_LEAD] = 5; /* to see it replaced by the default */
+    assert_int_equal(fw_params_deserialize(&back, buf, len), 0);
+    assert_int_equal(back.v[FP_SLIDE_VMAX], 120000);
+    assert_int_equal(back.v[FP_TRAJ_LEAD], fw_param_table[FP_TRAJ_LEAD].def);
+    /* A count this firmware does not know (a newer one's record): refused, nothing changed. */
+    buf[4] = (uint8_t)(FP_COUNT + 1);
+    const fw_param_set before = back;
+    assert_int_equal(fw_params_deserialize(&back, buf, len), -1);
+    assert_memory_equal(&back, &before, sizeof back);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -151,6 +198,7 @@ int main(void)
         cmocka_unit_test(test_set_one),
         cmocka_unit_test(test_board_parameters),
         cmocka_unit_test(test_record),
+        cmocka_unit_test(test_older_record),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -65,10 +65,7 @@ static void test_commit_and_clear_refusals(void **state)
     expect_state_reject(from, MOVE_FN, FW_STATE_MOVING);
 
     from = F.tx_count;
-    const uint8_t s = seq++;
-    stage(s, NEAR);
-    const int32_t v[3] = {s, 50000, 0};
-    send(PM_TRAJ_COMMIT, v);
+    traj_row(NEAR, 50000, true, false);
     expect_state_reject(from, TRAJ_FN, FW_STATE_MOVING);
 
     reach(FW_STATE_IDLE);
@@ -109,10 +106,7 @@ static proto_message refused_point(double d, int *slide, double *dq)
     *slide = fastest_slide(p, dq);
     const uint64_t pulses = F.pulses;
     const unsigned from = F.tx_count;
-    const uint8_t s = seq++;
-    stage(s, p);
-    const int32_t v[3] = {s, 50000, 0};
-    send(PM_TRAJ_COMMIT, v);
+    traj_row(p, 50000, true, false);
     fw_poll(&C);
     run(20);
     assert_int_equal(C.state, FW_STATE_IDLE);
@@ -175,10 +169,7 @@ static void test_timing_capped(void **state)
     memcpy(p, C.pose, sizeof p);
     p[2] += 0.02;
     const unsigned from = F.tx_count;
-    const uint8_t s = seq++;
-    stage(s, p);
-    const int32_t v[3] = {s, 1000, 0};
-    send(PM_TRAJ_COMMIT, v);
+    traj_row(p, 1000, true, false);
     fw_poll(&C);
     const proto_message r = reject_of(from, TRAJ_FN);
     assert_int_equal(r.v[REJ_REASON], FW_REASON_TIMING);

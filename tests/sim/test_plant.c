@@ -217,6 +217,7 @@ static void test_trajectory(void **state)
     const double z = 1.1;
     const int n = 500;
     double last[6] = {0};
+    uint8_t id = 0; /* the trajectory's identity: its first row's number */
     for (int i = 1; i <= n; ++i) {
         const double s = (double)i / n, e = 10 * pow(s, 3) - 15 * pow(s, 4) + 6 * pow(s, 5);
         const double ang = 2 * TSE_PI * e;
@@ -225,7 +226,9 @@ static void test_trajectory(void **state)
         const int32_t A[3] = {sq, (int32_t)lround(p[0] * 1e6), (int32_t)lround(p[1] * 1e6)};
         const int32_t B[3] = {sq, (int32_t)lround(p[2] * 1e6), 0};
         const int32_t Cc[3] = {sq, 0, 0};
-        const int32_t T[3] = {sq, i == 1 ? 2000000 : 20000, i == n};
+        if (i == 1)
+            id = sq;
+        const int32_t T[4] = {sq, i == 1 ? 2000000 : 20000, (i == 1 ? (int32_t)PROTO_TRAJ_FIRST : 0) | (i == n ? (int32_t)PROTO_TRAJ_LAST : 0), id};
         send(PM_POSE_A, A);
         send(PM_POSE_B, B);
         send(PM_POSE_C, Cc);
@@ -257,11 +260,14 @@ static void test_underrun_stops_smoothly(void **state)
 {
     (void)state;
     start(0.05);
+    uint8_t id = 0;
     for (int i = 1; i <= 100; ++i) {
         const double p[6] = {0.0005 * i, 0.0, 1.1, 0, 0, 0};
         const uint8_t sq = seq++;
         const int32_t A[3] = {sq, (int32_t)lround(p[0] * 1e6), 0}, B[3] = {sq, 1100000, 0}, Cc[3] = {sq, 0, 0};
-        const int32_t T[3] = {sq, i == 1 ? 1000000 : 20000, 0};
+        if (i == 1)
+            id = sq;
+        const int32_t T[4] = {sq, i == 1 ? 1000000 : 20000, i == 1 ? (int32_t)PROTO_TRAJ_FIRST : 0, id};
         send(PM_POSE_A, A);
         send(PM_POSE_B, B);
         send(PM_POSE_C, Cc);

@@ -206,8 +206,10 @@ static void judge(void)
         error("%s %u, not REJECT %u", ack ? "ACK" : "REJECT", reason, must);
     if (ack && pose)
         error("a pose part acknowledged");
+    /* A row of a trajectory that has ended is refused as such whatever the state. */
     if (d && must == FW_REASON_NONE && accepts[d->msg][cur.state] == '-' &&
-        (ack || (reason != FW_REASON_STATE && reason != FW_REASON_RANGE)))
+        (ack || (reason != FW_REASON_STATE && reason != FW_REASON_RANGE &&
+                 !(d->msg == PM_TRAJ_COMMIT && reason == FW_REASON_ENDED))))
         error("refused by the state table, answered %s %u", ack ? "ACK" : "REJECT", reason);
     if (ack) {
         ++n.acks;
@@ -276,6 +278,7 @@ static struct {
     uint8_t seq;
     uint32_t wait;          /* ms to the next command */
     int traj_left;          /* trajectory points still to stream */
+    uint8_t traj_id;        /* the stream's identity: its first row's number */
     uint32_t traj_wait;
     double traj_pose[6];
 } host;
@@ -356,7 +359,9 @@ static void traj_point(bool first)
     --host.traj_left;
     /* Most streams end with a last point; the others run dry (an underrun). */
     const int32_t last = host.traj_left == 0 && chance(0.8);
-    const int32_t v[3] = {s, first ? (int32_t)(200000 + below(300000)) : (int32_t)(20000 + below(60000)), last};
+    const int32_t flags = (first ? (int32_t)PROTO_TRAJ_FIRST : 0) | (last ? (int32_t)PROTO_TRAJ_LAST : 0);
+    const int32_t v[4] = {s, first ? (int32_t)(200000 + below(300000)) : (int32_t)(20000 + below(60000)), flags,
+                          host.traj_id};
     msg(K_TRAJ_COMMIT, PM_TRAJ_COMMIT, v);
 }
 
@@ -365,6 +370,7 @@ static void traj_start(void)
     host.traj_left = 3 + (int)below(28);
     for (int k = 0; k < 6; ++k)
         host.traj_pose[k] = (double)R.fw.pose[k];
+    host.traj_id = pose_seq();
     traj_point(true);
     host.traj_wait = 10 + below(30);
 }

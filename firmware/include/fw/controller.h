@@ -87,6 +87,26 @@ typedef struct {
     int32_t edge_steps[6]; /* steps emitted when the release edge was seen */
 } fw_homing;
 
+/* A streamed trajectory's life (traj_run.c).  Its rows join it by its identity (chosen by the host
+ * for its first row) and in sequence; its clock starts once the queue holds traj_lead of it (or
+ * its last row, or the queue is full), the plate at rest until then; how it ended is reported once
+ * (TRAJ_END) and kept, so that a row of it still coming is refused `ended`, saying how and how
+ * long before. */
+typedef struct {
+    bool open;            /* from its first row until it ends */
+    bool clock;           /* its clock runs (kept as it was once it ends) */
+    bool report;          /* TRAJ_END still to send (fw_poll sends it) */
+    uint8_t id;           /* the open trajectory's identity */
+    uint8_t next_seq;     /* the sequence number its next row must carry */
+    uint32_t rows;        /* rows it took */
+    /* The trajectory that ended last: */
+    fw_traj_end ended;    /* how (FW_TRAJ_END_NONE: none has ended) */
+    fw_fault fault;       /* the fault that ended it */
+    uint8_t ended_id;
+    uint32_t ended_rows;
+    uint64_t ended_us;    /* when */
+} fw_traj_run;
+
 /* A joint-space move (after homing, the robot is not yet at a pose the planner can start from). */
 typedef struct {
     tse_real from[6], to[6];
@@ -128,6 +148,7 @@ typedef struct {
     uint32_t blend_k0;      /* segment of `move` at which `next` starts */
     fw_joint_move joint;
     fw_traj traj;
+    fw_traj_run run;
     tse_real tau;           /* path time of the running source [s] */
     bool stopping;
     tse_real stop_t, stop_T;/* time into the stop ramp, its length */

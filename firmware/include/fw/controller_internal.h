@@ -35,4 +35,23 @@ int32_t fw_home_switch_steps(const fw_controller *c, int k);
 /* Completes a pending fw_estop_isr with fw_estop (nothing if none is pending). */
 void fw_estop_complete(fw_controller *c);
 
+/* A streamed trajectory's life (traj_run.c, fw_traj_run). */
+/* A TRAJ_COMMIT taken: its first row begins the run (with the host's identity), every row counts. */
+void fw_traj_run_took(fw_controller *c, uint8_t seq, bool first, uint8_t id);
+/* True while the running trajectory's clock waits for the queue to hold enough; starts it once it
+ * does. */
+bool fw_traj_run_priming(fw_controller *c);
+/* Ends the open trajectory (nothing if none is open): how, the fault for FW_TRAJ_END_FAULT. */
+void fw_traj_run_end(fw_controller *c, fw_traj_end how, fw_fault f);
+/* The ending of the open trajectory, if any, when motion stops or comes to rest with `pending`
+ * (the fault to latch, or none): a fault if one is pending, else `otherwise`. */
+void fw_traj_run_end_pending(fw_controller *c, fw_traj_end otherwise);
+/* Why a TRAJ_COMMIT may not join a trajectory: FW_REASON_NONE, or ORDER or ENDED with the REJECT's
+ * field and where in *field, *where.  `ended_only`: only a row of the trajectory that ended last
+ * (checked before the state table, so that it is refused `ended` in any state). */
+fw_reason fw_traj_row_refusal(const fw_controller *c, const proto_message *m, bool ended_only, uint8_t *field,
+                              int32_t *where);
+/* Sends a pending TRAJ_END. */
+void fw_traj_run_report(fw_controller *c);
+
 #endif

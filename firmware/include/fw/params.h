@@ -46,6 +46,7 @@ typedef enum {
     FP_STEP_PULSE_NS, /* [ns] STEP high time */
     FP_DIR_SETUP_NS,  /* [ns] DIR stable before a STEP edge */
     FP_CAN_KBPS,      /* [kbit/s] 125, 250, 500 or 1000; applied by the board at start-up */
+    FP_TRAJ_LEAD,     /* [us] trajectory held before its clock starts */
     FP_COUNT
 } fw_param_id;
 
@@ -91,9 +92,11 @@ int fw_params_set_one(fw_param_set *s, uint16_t id, int32_t value);
 /* Whether value is acceptable for parameter id on its own (range, and the CAN rates). */
 int fw_param_value_ok(uint16_t id, int32_t value);
 
-/* Storage record: a version tag, the set, and a CRC-32.  serialize returns the length written
- * (or 0 if cap is too small); deserialize returns 0 for a good record, -1 otherwise (and leaves
- * *s untouched). */
+/* Storage record: a version tag, the number of parameters, the set, and a CRC-32.  serialize
+ * returns the length written (or 0 if cap is too small); deserialize returns 0 for a good record,
+ * -1 otherwise (and leaves *s untouched).  A good record may hold fewer parameters than this
+ * firmware knows (an older firmware's: parameters are only appended); the rest take their
+ * defaults. */
 size_t fw_params_serialize(const fw_param_set *s, uint8_t *buf, size_t cap);
 int fw_params_deserialize(fw_param_set *s, const uint8_t *buf, size_t len);
 

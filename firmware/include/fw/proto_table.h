@@ -16,6 +16,16 @@
 #define PROTO_BROADCAST 0u
 #define PROTO_MAX_FIELDS 7
 
+/* TRAJ_COMMIT's flags. */
+#define PROTO_TRAJ_LAST 1u  /* the trajectory's last row */
+#define PROTO_TRAJ_FIRST 2u /* its first row: starts it */
+
+/* Trajectory rows a host keeps in flight (sent, their ACK or REJECT not yet read) while it
+ * streams, within the queue's free slots: 4 rows are 16 frames, half the board's 32-frame receive
+ * ring (hal/stm32f4 can_ring.h), so a burst fits while the controller validates a row; and enough
+ * that the bus's and the host's round trip no longer sets the pace (docs/protocol.md). */
+#define PROTO_TRAJ_WINDOW 4
+
 typedef enum { PROTO_TO_CONTROLLER, PROTO_TO_HOST } proto_direction;
 
 typedef enum { PF_U8, PF_I8, PF_U16, PF_I16, PF_U24, PF_I24, PF_U32, PF_I32 } proto_field_type;
@@ -64,6 +74,7 @@ typedef enum {
     PM_FK_C,
     PM_PARAM_VALUE,
     PM_MOVE_INFO,
+    PM_TRAJ_END,
     PM_COUNT
 } proto_msg;
 
@@ -100,5 +111,6 @@ typedef struct {
     const char *title;
 } proto_enum_def;
 extern const proto_enum_def proto_enums[];
+extern const proto_enum_entry proto_traj_end_names[];
 
 #endif

@@ -74,7 +74,20 @@ typedef enum {
     FW_REASON_PARAM_SET = 12,    /* value in range, but the geometry it gives is invalid */
     FW_REASON_STORAGE = 13,      /* parameters could not be saved */
     FW_REASON_TIMING = 14,       /* a timed point asks for more than the slide limits allow */
+    FW_REASON_ORDER = 15,        /* a trajectory row that is not its trajectory's next: a row before
+                                  * it was refused or lost (nothing taken; send again from that one) */
+    FW_REASON_ENDED = 16,        /* a row of a trajectory that is not running: it ended (a STOP, a
+                                  * fault, an underrun, an e-stop, or its last row), or never began */
     FW_REASON_COUNT
 } fw_reason;
+
+/* How a streamed trajectory ended (TRAJ_END, and the REJECT of a row of it that came after). */
+typedef enum {
+    FW_TRAJ_END_NONE = 0,  /* not known to have run: no trajectory of that identity ended last */
+    FW_TRAJ_END_DONE = 1,  /* it ran to its last row */
+    FW_TRAJ_END_STOP = 2,  /* a STOP ended it */
+    FW_TRAJ_END_FAULT = 3, /* a fault ended it (the fault travels with it: e-stop, underrun, ...) */
+    FW_TRAJ_END_COUNT
+} fw_traj_end;
 
 #endif

@@ -47,6 +47,13 @@ static void check_reject_details(const int64_t *v, fw_state state_before, bool s
         if (state_known)
             FUZZ_CHECK(field == state_before);
         break;
+    case FW_REASON_ENDED: /* how (a traj_end) + 16 x the fault; where: ms since it ended */
+        FUZZ_CHECK(scissor == 0 && kin == 0 && (field & 15) < FW_TRAJ_END_COUNT && (field >> 4) < FW_FAULT_COUNT);
+        FUZZ_CHECK(((field >> 4) != 0) == ((field & 15) == FW_TRAJ_END_FAULT) && where >= 0 && where <= 65535);
+        break;
+    case FW_REASON_ORDER: /* field: the sequence number expected */
+        FUZZ_CHECK(scissor == 0 && kin == 0 && where == 0);
+        break;
     default:
         FUZZ_CHECK(scissor == 0 && kin == 0 && where == 0);
         break;
@@ -64,6 +71,31 @@ static void check_target(const oracle_model *o, const tse_real *to)
         FUZZ_CHECK(fabs(to[k] - (tse_real)o->stage_v[k] * TSE_R(1e-6)) <= TSE_R(1e-9));
 }
 
+/* A trajectory row's place (docs/protocol.md, "Streaming a trajectory"), from the controller's
+ * trajectory bookkeeping before the frame: a row other than a first joins the open trajectory of
+ * its identity with the next sequence number, or is refused `order`; a row of the trajectory that
+ * ended last is refused `ended` (in any state: `ended_only` asks only for that), and so is one of
+ * no trajectory running.  The refusal's field in *field. */
+static fw_reason row_place(const oracle_model *o, bool ended_only, int64_t *field)
+{
+    const snapshot *b = &o->before;
+    const uint8_t id = (uint8_t)o->wf.v[3];
+    *field = 0;
+    if (o->wf.v[2] & PROTO_TRAJ_FIRST)
+        return FW_REASON_NONE;
+    if (b->run_open && id == b->run_id) {
+        if (ended_only || o->wf.seq == b->run_next_seq)
+            return FW_REASON_NONE;
+        *field = b->run_next_seq;
+        return FW_REASON_ORDER;
+    }
+    if (b->run_ended != FW_TRAJ_END_NONE && id == b->run_ended_id) {
+        *field = b->run_ended + 16 * (int64_t)b->run_fault;
+        return FW_REASON_ENDED;
+    }
+    return ended_only ? FW_REASON_NONE : FW_REASON_ENDED;
+}
+
 /* A commit's answer against the staging rules: applied only when all three parts of its number
  * arrived and the number is newer than the last commit; refused for its content, it spends the
  * number (docs/protocol.md). */
@@ -71,6 +103,14 @@ static void judge_commit(oracle_model *o, const rig *r, const oracle_outputs *ou
 {
     const bool complete = staged_complete(o, seq);
     const bool fresh = !o->any_commit || newer(seq, o->last_commit);
+    const bool traj = o->wf.msg == PM_TRAJ_COMMIT, first = traj && (o->wf.v[2] & PROTO_TRAJ_FIRST);
+    int64_t field = 0;
+    const fw_reason place = traj ? row_place(o, false, &field) : FW_REASON_NONE;
+    /* Its place among the trajectories is judged before its pose. */
+    if (place != FW_REASON_NONE) {
+        FUZZ_CHECK(out->n_rej && out->rej[2] == place && out->rej[5] == field);
+        return;
+    }
     bool spends = false;
     if (out->n_ack) {
         FUZZ_CHECK(complete && fresh && o->before.homed);
@@ -83,7 +123,9 @@ static void judge_commit(oracle_model *o, const rig *r, const oracle_outputs *ou
                 FUZZ_CHECK(out->ack[4] + 1 >= o->wf.v[2]);
         } else {
             check_target(o, c->traj.tail.pose);
-            if (o->before.state == FW_STATE_IDLE)
+            /* A trajectory starts with its first row, at rest; the others join it while it runs. */
+            FUZZ_CHECK(first == (o->before.state == FW_STATE_IDLE));
+            if (first)
                 o->traj_running = true;
         }
         if (o->before.state == FW_STATE_IDLE)
@@ -110,6 +152,10 @@ static void judge_commit(oracle_model *o, const rig *r, const oracle_outputs *ou
             break;
         case FW_REASON_STATE: /* the state table accepts it, but not in every kind of motion */
             FUZZ_CHECK(o->before.state == FW_STATE_MOVING);
+            break;
+        case FW_REASON_ORDER:
+        case FW_REASON_ENDED:
+            FUZZ_CHECK(!"a row refused for its place, which row_place gives none");
             break;
         default:
             FUZZ_CHECK(!"a commit refused for a reason that cannot be its");
@@ -256,6 +302,17 @@ static void judge_command(oracle_model *o, rig *r, const oracle_outputs *out, bo
         check_reject_details(out->rej, was, !hooked);
     if (m != PM_PARAM_GET && m != PM_PARAM_SET)
         FUZZ_CHECK(out->n_pv == 0);
+    /* A row of the trajectory that ended last is refused as such whatever the state. */
+    if (m == PM_TRAJ_COMMIT) {
+        int64_t field = 0;
+        const fw_reason ended = row_place(o, true, &field);
+        if (ended != FW_REASON_NONE && !hooked) {
+            FUZZ_CHECK(out->n_rej && out->rej[2] == ended && out->rej[5] == field);
+            return;
+        }
+        if (hooked && out->n_rej && out->rej[2] == FW_REASON_ENDED)
+            return; /* the interrupt's e-stop may have ended the trajectory first */
+    }
     /* With an e-stop interrupt in the poll, the state the frame met is the snapshot's or ESTOP:
      * what depends on it is not judged, but what was answered still updates the model. */
     if (!hooked && accepts[m][was] == '-') {

@@ -24,7 +24,9 @@
  *                      send C, B, A
  *   MOVE m v16         MOVE_COMMIT: m bits 0-1 SEQ, bit 2 by speed (50 mm/s + 8 v um/s) else
  *                      duration (1 + v % 2000 ms): moves the simulated time can see through
- *   TRAJ m v16         TRAJ_COMMIT: m bits 0-1 SEQ, bit 2 last point; dt = 1 ms + 10 v us
+ *   TRAJ m v16         TRAJ_COMMIT: m bits 0-1 SEQ, bit 2 last row, bit 3 first row (its number
+ *                      becomes the host's trajectory identity), bit 4 an identity one off the
+ *                      host's; dt = 1 ms + 10 v us
  *   PARAM id m v32     id % 40 (or 16-bit id with m bit 4: two id bytes); m % 8: 0 set v folded
  *                      onto the range, 1 default + int16(v), 2 min + v % 256, 3 max - v % 256,
  *                      4 set v raw, 5 get, 6 save, 7 save with v as the magic
@@ -254,7 +256,11 @@ static bool op_traj(input *in)
     int32_t seq;
     if (!take8(in, &m) || !take16(in, &v) || !seq_of(in, m, &seq))
         return false;
-    const int32_t f[3] = {seq, 1000 + 10 * (int32_t)v, (m & 4u) ? 1 : 0};
+    static uint8_t traj_id; /* the host's trajectory: its first row's number */
+    if (m & 8u)
+        traj_id = (uint8_t)seq;
+    const int32_t flags = ((m & 4u) ? (int32_t)PROTO_TRAJ_LAST : 0) | ((m & 8u) ? (int32_t)PROTO_TRAJ_FIRST : 0);
+    const int32_t f[4] = {seq, 1000 + 10 * (int32_t)v, flags, (uint8_t)(traj_id + ((m & 16u) ? 1u : 0u))};
     rig_feed_msg(&R, R.cfg.node, PM_TRAJ_COMMIT, f);
     return true;
 }

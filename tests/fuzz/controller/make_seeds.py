@@ -32,7 +32,7 @@ MSGS = ["ESTOP", "STOP", "HOST_HEARTBEAT", "ENABLE", "DISABLE", "HOME", "CLEAR_F
 PARAM = {"L": 0, "s_min": 7, "s_max": 8, "mu_min": 9, "steps_per_m": 11, "slide_vmax": 12,
          "slide_amax": 13, "plate_vmax": 14, "step_rate_max": 19, "watchdog_ms": 20,
          "status_ms": 21, "telemetry_ms": 22, "homing_speed": 23, "homing_backoff": 24,
-         "home_sw_1": 25, "step_pulse_ns": 31, "dir_setup_ns": 32, "can_kbps": 33}
+         "home_sw_1": 25, "step_pulse_ns": 31, "dir_setup_ns": 32, "can_kbps": 33, "traj_lead": 34}
 # Fake hook points (tests/firmware/fake_hal.h).
 AT_CLOCK, AT_RECEIVE, AT_CAN_STATE, AT_ENABLE = 0, 1, 2, 3
 
@@ -90,8 +90,9 @@ class Seed:
         self.b.extend(self.seq(seq, raw))
         return self
 
-    def traj(self, dt_us, last=False, seq=SAME, raw=0):
-        self.op("TRAJ", seq | (4 if last else 0), *struct.pack("<H", (dt_us - 1000) // 10))
+    def traj(self, dt_us, last=False, seq=SAME, raw=0, first=False, stranger=False):
+        self.op("TRAJ", seq | (4 if last else 0) | (8 if first else 0) | (16 if stranger else 0),
+                *struct.pack("<H", (dt_us - 1000) // 10))
         self.b.extend(self.seq(seq, raw))
         return self
 
@@ -174,23 +175,27 @@ def seeds():
      .pose(dx=3000, dy=3000).move(ms=400).rest())
     t = new("trajectory", reaches=motion).home()
     for i in range(1, 9):
-        t.pose(dx=500 * i, dz=-300 * i).traj(50000, last=(i == 8))
+        t.pose(dx=500 * i, dz=-300 * i).traj(50000, last=(i == 8), first=(i == 1))
     t.rest()
+    # Past traj_lead (0.2 s), so that its clock starts and the queue runs dry.
     t = new("trajectory_underrun", reaches=("moving", "fault")).home()
-    for i in range(1, 4):
-        t.pose(dx=800 * i).traj(60000)
+    for i in range(1, 6):
+        t.pose(dx=800 * i).traj(60000, first=(i == 1))
     t.rest()
+    # A row of the stopped trajectory is refused `ended`, a stranger's too; a new one starts.
     t = new("trajectory_stop", reaches=("stopping",)).home()
     for i in range(1, 7):
-        t.pose(dy=600 * i).traj(80000)
-    t.ms(120).cmd("STOP").pose(dy=5000).traj(80000).rest().pose(dy=100).traj(80000, last=True).rest()
+        t.pose(dy=600 * i).traj(80000, first=(i == 1))
+    t.ms(120).cmd("STOP").pose(dy=5000).traj(80000).rest().pose(dy=100).traj(80000, stranger=True) \
+        .pose(dy=100).traj(80000, last=True, first=True).rest()
+    # The rows after a row refused `queue_full` are refused `order`.
     t = new("trajectory_queue_full", reaches=("moving",)).home()
     for i in range(1, 36):
-        t.pose(dx=100 * i).traj(40000)
+        t.pose(dx=100 * i).traj(40000, first=(i == 1))
     t.cmd("STOP").rest()
     new("traj_during_move", reaches=("moving",)).home().pose(dx=3000).move(ms=400).ms(50) \
-        .pose(dx=2000).traj(50000, last=True).rest().pose(dz=500).traj(50000).pose(dz=900) \
-        .move(ms=100).rest()
+        .pose(dx=2000).traj(50000, last=True, first=True).rest().pose(dz=500).traj(50000, first=True) \
+        .pose(dz=900).move(ms=100).rest()
     new("stop_move", reaches=("stopping", "idle")).home().pose(dx=5000, dz=-5000).move(ms=800) \
         .ms(200).cmd("STOP").rest()
     new("stop_homing", reaches=("stopping",)).cmd("ENABLE").cmd("HOME").ms(30).cmd("STOP").rest() \
@@ -262,10 +267,10 @@ def seeds():
         .param_set("slide_vmax", 100000).save().rest().cmd("DISABLE")
     new("malformed").raw(0x061, [1, 2]).raw(0x7F1, [1]).raw(0x0D1, [9, 7, 0xE8, 3, 0, 0]) \
         .raw(0x0A1, [9, 0xFF, 0xFF, 0x7F, 0, 0, 0]).raw(0x111, [1, 2, 3, 4]).raw(0x072, [5]) \
-        .raw(0x201, [0] * 8).raw(0x060, [5]).raw(0x031, [0] * 8).raw(0x0E1, [3, 0, 0, 0, 0, 0], 6) \
+        .raw(0x201, [0] * 8).raw(0x060, [5]).raw(0x031, [0] * 8).raw(0x0E1, [3, 0, 0, 0, 0, 0, 3], 7) \
         .raw(0x0F1, [], 0).raw(0x010, [1], 1).raw(0x011, [], 0)
     new("msg_fields").msg("ENABLE", b"\x05").msg("MOVE_COMMIT", b"\x07\x05\x10\x00\x00\x00") \
-        .msg("TRAJ_COMMIT", b"\x07\x00\x00\x00\x00\x03") \
+        .msg("TRAJ_COMMIT", b"\x07\x00\x00\x00\x00\x03\x07") \
         .msg("POSE_A", b"\x01\xff\xff\x7f\x00\x00\x00", flip=30) \
         .msg("STOP", b"\x02", node=3).msg("ESTOP", b"\x02", node=2) \
         .msg("HOME", b"\x04", flip=11).msg("DISABLE", b"\x04", flip=3)

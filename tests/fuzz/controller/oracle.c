@@ -141,6 +141,9 @@ static void read_outputs(rig *r, oracle_outputs *out)
         case PM_SLIDES_C:
             check_slides(r, 2 * (m - PM_SLIDES_A), v);
             break;
+        case PM_TRAJ_END: /* a fault travels with the fault ending, and only with it */
+            FUZZ_CHECK((v[1] == FW_TRAJ_END_FAULT) == (v[2] != FW_FAULT_NONE));
+            break;
         default:
             break;
         }

@@ -46,6 +46,16 @@ void snapshot_take(const rig *r, snapshot *s)
         s->traj_end_us = fw_traj_end_us(&c->traj);
         s->traj_closed = c->traj.closed;
     }
+    s->run_open = c->run.open;
+    s->run_clock = c->run.clock;
+    s->run_id = c->run.id;
+    s->run_next_seq = c->run.next_seq;
+    s->run_rows = c->run.rows;
+    s->run_ended = c->run.ended;
+    s->run_fault = c->run.fault;
+    s->run_ended_id = c->run.ended_id;
+    s->run_ended_rows = c->run.ended_rows;
+    s->run_ended_us = c->run.ended_us;
     s->home_active = c->home.active;
     s->home_abort = c->home.abort;
     s->home_phase = c->home.phase;
@@ -105,6 +115,16 @@ bool snapshot_same(const snapshot *a, const snapshot *b, bool spent, const char 
     SAME(traj_depth);
     SAME(traj_end_us);
     SAME(traj_closed);
+    SAME(run_open);
+    SAME(run_clock);
+    SAME(run_id);
+    SAME(run_next_seq);
+    SAME(run_rows);
+    SAME(run_ended);
+    SAME(run_fault);
+    SAME(run_ended_id);
+    SAME(run_ended_rows);
+    SAME(run_ended_us);
     SAME(home_active);
     SAME(home_abort);
     SAME(home_phase);

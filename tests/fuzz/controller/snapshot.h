@@ -6,7 +6,8 @@
  * them and as the enable output stands), the parameters and the limits derived from them, the
  * driver timing programmed and the flash, the staged pose, the last accepted commit, the motion
  * (source, the running move's target and timing, a blended successor, the stop ramp), the
- * trajectory queue (depth, end time, open or closed while a trajectory runs), homing's phase, the
+ * trajectory queue (depth, end time, open or closed while a trajectory runs) and its life (open,
+ * clocked, identity, rows, how the last one ended), homing's phase, the
  * step generator's timing, queue and positions, the setpoint, the watchdog's last heartbeat.
  * Not compared: the STATUS counter and the times of the next STATUS and telemetry (periodic output:
  * the poll after the frame may legitimately send them), and the bus-off and overrun counts seen
@@ -42,6 +43,13 @@ typedef struct {
     unsigned traj_depth;
     uint64_t traj_end_us;
     bool traj_closed;
+    /* The trajectory's life (fw_traj_run), but the TRAJ_END still to send (a poll sends it). */
+    bool run_open, run_clock;
+    uint8_t run_id, run_next_seq, run_ended_id;
+    uint32_t run_rows, run_ended_rows;
+    fw_traj_end run_ended;
+    fw_fault run_fault;
+    uint64_t run_ended_us;
     bool home_active, home_abort;
     fw_home_phase home_phase;
     uint8_t home_axis[6];
