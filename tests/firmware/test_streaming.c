@@ -206,6 +206,18 @@ static bool traj_end_since(unsigned from, proto_message *m)
     return true;
 }
 
+/* The TRAJ_END since tx index `from` says the running trajectory (traj_id) ended `how` (with
+ * `fault`) after taking `rows` rows. */
+static void assert_traj_end(unsigned from, fw_traj_end how, fw_fault fault, int rows)
+{
+    proto_message end;
+    assert_true(traj_end_since(from, &end));
+    assert_int_equal(end.v[0], traj_id);
+    assert_int_equal(end.v[1], how);
+    assert_int_equal(end.v[2], fault);
+    assert_int_equal(end.v[3], rows);
+}
+
 static unsigned answers_since(unsigned from, uint8_t function)
 {
     unsigned n = 0;
@@ -270,12 +282,7 @@ static void test_first_rows_wait_for_the_lead(void **state)
         fail_msg("the trajectory took %.1f ms from the clock's start, not %d", took_ms, 20 * n);
     for (int k = 0; k < 6; ++k)
         assert_true(fabs(C.pose[k] - p[k]) < 1e-9);
-    proto_message end;
-    assert_true(traj_end_since(from, &end));
-    assert_int_equal(end.v[0], traj_id);
-    assert_int_equal(end.v[1], FW_TRAJ_END_DONE);
-    assert_int_equal(end.v[2], FW_FAULT_NONE);
-    assert_int_equal(end.v[3], n);
+    assert_traj_end(from, FW_TRAJ_END_DONE, FW_FAULT_NONE, n);
 }
 
 /* A trajectory shorter than the lead runs once its last row is in; one whose rows fill the queue
@@ -402,10 +409,7 @@ static void test_underrun_is_reported_with_its_row_and_lateness(void **state)
     const double at_ms = (double)(F.now_us - t0) * 1e-3;
     if (fabs(at_ms - 288.0) > 3.0)
         fail_msg("the underrun was reported %.1f ms after the clock started, not 288", at_ms);
-    assert_int_equal(end.v[0], traj_id);
-    assert_int_equal(end.v[1], FW_TRAJ_END_FAULT);
-    assert_int_equal(end.v[2], FW_FAULT_UNDERRUN);
-    assert_int_equal(end.v[3], 15);
+    assert_traj_end(from, FW_TRAJ_END_FAULT, FW_FAULT_UNDERRUN, 15);
     /* The 16th row, 37 ms later (the report went out with the poll after the tick that stopped). */
     for (int ms = 0; ms < 37; ++ms)
         one_ms();
@@ -437,13 +441,8 @@ static void test_rows_of_a_stopped_trajectory_never_start_another(void **state)
     cmd(PM_STOP);
     fw_poll(&C);
     const uint64_t t_stop = F.now_us;
-    proto_message end;
     run(10);
-    assert_true(traj_end_since(from, &end));
-    assert_int_equal(end.v[0], traj_id);
-    assert_int_equal(end.v[1], FW_TRAJ_END_STOP);
-    assert_int_equal(end.v[2], FW_FAULT_NONE);
-    assert_int_equal(end.v[3], 30);
+    assert_traj_end(from, FW_TRAJ_END_STOP, FW_FAULT_NONE, 30);
     for (int i = 0; i < 100 && C.state != FW_STATE_IDLE; ++i)
         run(10);
     assert_int_equal(C.state, FW_STATE_IDLE);
@@ -497,11 +496,7 @@ static void test_estop_ends_the_trajectory(void **state)
     cmd(PM_ESTOP);
     fw_poll(&C);
     fw_poll(&C);
-    proto_message end;
-    assert_true(traj_end_since(from, &end));
-    assert_int_equal(end.v[1], FW_TRAJ_END_FAULT);
-    assert_int_equal(end.v[2], FW_FAULT_ESTOP);
-    assert_int_equal(end.v[3], 20);
+    assert_traj_end(from, FW_TRAJ_END_FAULT, FW_FAULT_ESTOP, 20);
     from = F.tx_count;
     p[2] += 0.001;
     point(p, 50000, false);
