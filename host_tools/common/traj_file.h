@@ -17,7 +17,8 @@
  *  - Every number is finite.  |x|, |y|, |z| <= 4 m and |roll|, |pitch|, |yaw| <= 3.141593 rad:
  *    the CAN wire carries 24-bit micrometres and microradians (+-4000000, +-3141593), e.g.
  *        traj.csv:12: column 2 (x) = 4.5 m is outside the wire's range -4..4 m
- *  - t is the time from the moment the controller takes the first row, when the plate is at rest
+ *  - t is the time from the moment the controller starts the trajectory (once it holds traj_lead
+ *    of it, its last row or a full queue: docs/protocol.md), when the plate is at rest
  *    where it is.  The wire carries the time from one row to the next in whole microseconds: each
  *    t is rounded to 1 us and each difference of rounded times (the first row's from 0) must be
  *    0.001 s to 60 s.  So the first row's t is 0.001 s to 60 s, and every later row's t exceeds
@@ -40,7 +41,7 @@
 #define TRAJ_FILE_DT_MAX_US 60000000LL /* 60 s */
 
 typedef struct {
-    double t;    /* [s] from the moment the controller takes the first row */
+    double t;    /* [s] from the moment the controller starts the trajectory */
     double p[6]; /* x, y, z [m]; roll, pitch, yaw [rad] */
     int line;    /* 1-based line of the file the row came from */
 } traj_row;

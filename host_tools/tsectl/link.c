@@ -128,6 +128,10 @@ int link_recv(tlink *l, proto_message *m, int timeout_ms)
         if (proto_decode(&f, PROTO_TO_HOST, m).reason == FW_REASON_NONE && m->node == l->node) {
             if (m->msg == PM_STATUS)
                 note_status(l, (uint16_t)m->v[6]);
+            if (m->msg == PM_TRAJ_END) {
+                l->traj_end = *m;
+                l->traj_end_seen = true;
+            }
             return 1;
         }
         proto_message other;

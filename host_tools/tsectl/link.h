@@ -19,6 +19,9 @@ typedef struct {
     uint64_t other_heartbeat_us; /* when another host's HOST_HEARTBEAT to the node was last seen (0: never) */
     status_order statuses;       /* the node's STATUS counters (two controllers on one node id?) */
     bool twin_warned;            /* the warning of two controllers on one node id was given */
+    /* The newest TRAJ_END read, whoever read it (a wait for rest reads on past it). */
+    proto_message traj_end;
+    bool traj_end_seen;
 } tlink;
 
 int link_open(tlink *l, const char *iface, uint8_t node);

@@ -22,6 +22,9 @@ static void on_signal(int s)
         tsectl_signals = tsectl_signals + 1;
 }
 
+#define TEXT_OF(x) #x
+#define TEXT(x) TEXT_OF(x)
+
 static const char *const traj_help =
     "Streams a timed path with flow control.  FILE is CSV: rows t,x,y,z,roll,pitch,yaw (seconds,\n"
     "metres, radians), optionally a header row of those names first; '#' lines and blank lines are\n"
@@ -29,19 +32,26 @@ static const char *const traj_help =
     "wire's range (+-4 m, +-pi rad), or a time that does not increase by 1 ms to 60 s exits 2\n"
     "naming FILE:LINE.\n"
     "\n"
-    "t is measured from the moment the controller takes the first row; at t = 0 the plate is at rest\n"
-    "where it is now.  Between rows the plate moves straight at constant speed (orientation slerped),\n"
-    "so a row changes the speed at once: the first row must start gently from rest (it is usually\n"
-    "the current pose, or a few millimetres from it), and later rows must ease in and out.  The\n"
-    "controller measures slide acceleration over 10 ms, so a row may change a slide's speed by about\n"
-    "slide_amax x 10 ms (1 cm/s with the defaults).  Sample a smooth path 10 to 50 ms apart.\n"
+    "t is measured from the moment the controller starts the trajectory: it holds the plate at rest\n"
+    "where it is now until it has traj_lead of the path (0.2 s by default; 'tsectl params get\n"
+    "traj_lead'), or the last row, or a full queue, so no hold row is needed at the start.  Between\n"
+    "rows the plate moves straight at constant speed (orientation slerped), so a row changes the speed\n"
+    "at once: the first row must start gently from rest (it is usually the current pose, or a few\n"
+    "millimetres from it), and later rows must ease in and out.  The controller measures slide\n"
+    "acceleration over 10 ms, so a row may change a slide's speed by about slide_amax x 10 ms (1 cm/s\n"
+    "with the defaults).  Sample a smooth path 10 to 50 ms apart.\n"
     "\n"
     "Before sending, tsectl reads the controller's parameters, pose and slides and checks the whole\n"
     "file with the controller's own validator: a row that would be refused exits 3 naming FILE:LINE,\n"
-    "which limit and by how much, and nothing is sent.  If a row is still refused while streaming,\n"
-    "or the controller faults, or you press Ctrl-C, tsectl sends STOP, waits until the robot is at\n"
-    "rest, and exits 3 (130 for Ctrl-C or SIGTERM) naming the row: never part of a path left running.\n"
-    "A second Ctrl-C while it waits for rest sends ESTOP.";
+    "which limit and by how much, and nothing is sent.  Rows then stream with up to "
+    TEXT(PROTO_TRAJ_WINDOW) " in flight within\n"
+    "the room the controller reports, keeping its queue ahead; the rows/s reached is printed.  If a\n"
+    "row is still refused while streaming, or you press Ctrl-C, tsectl sends STOP, waits until the\n"
+    "robot is at rest, and exits 3 (130 for Ctrl-C or SIGTERM) naming the row: never part of a path\n"
+    "left running.  A second Ctrl-C while it waits for rest sends ESTOP.  If the controller ends the\n"
+    "trajectory itself (a STOP tsectl did not send, a fault, an underrun: the host fell behind, and\n"
+    "the refusal of the late row says by how many ms; an e-stop), tsectl names which and the row,\n"
+    "waits until the robot is at rest and exits 3.";
 
 static const char *const params_help =
     "list              the parameters with their defaults, SI units, ranges and meaning (no bus)\n"

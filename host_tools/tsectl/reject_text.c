@@ -59,6 +59,41 @@ static const char *state_advice(int function, int state)
     }
 }
 
+/* A row of a trajectory that has ended: how it ended (a traj_end and the fault) and how long
+ * before the row came (ms, 65535 for that or more). */
+static void ended_text(char *buf, size_t cap, const char *cmd, int how, int fault, int ms)
+{
+    char ago[48];
+    if (ms >= 65535)
+        snprintf(ago, sizeof ago, "65.5 s or more");
+    else
+        snprintf(ago, sizeof ago, "%d ms", ms);
+    if (how == FW_TRAJ_END_DONE)
+        snprintf(buf, cap, "rejected: ended: %s: its trajectory had run to its last row %s before this row came", cmd,
+                 ago);
+    else if (how == FW_TRAJ_END_STOP)
+        snprintf(buf, cap,
+                 "rejected: ended: %s: its trajectory was ended by a STOP %s before this row came; nothing more of "
+                 "it is taken",
+                 cmd, ago);
+    else if (how == FW_TRAJ_END_FAULT && fault == FW_FAULT_UNDERRUN)
+        snprintf(buf, cap,
+                 "rejected: ended: %s: this row came %s late: the controller had run out of path (underrun) and "
+                 "stopped the robot; the host must keep the queue ahead (stream faster, or raise traj_lead)",
+                 cmd, ago);
+    else if (how == FW_TRAJ_END_FAULT && fault == FW_FAULT_ESTOP)
+        snprintf(buf, cap, "rejected: ended: %s: its trajectory was ended by an e-stop %s before this row came", cmd,
+                 ago);
+    else if (how == FW_TRAJ_END_FAULT)
+        snprintf(buf, cap, "rejected: ended: %s: its trajectory was ended by a %s fault %s before this row came", cmd,
+                 proto_enum_name(proto_fault_names, fault), ago);
+    else
+        snprintf(buf, cap,
+                 "rejected: ended: %s: no trajectory of this row's identity is running (a trajectory starts with a "
+                 "row flagged first, taken while the controller is idle)",
+                 cmd);
+}
+
 const char *reject_text(const proto_message *r, char *buf, size_t cap)
 {
     const int function = r->v[0], reason = r->v[2], scissor = r->v[3], kin = r->v[4], field = r->v[5],
@@ -136,6 +171,16 @@ const char *reject_text(const proto_message *r, char *buf, size_t cap)
                  "rejected: stale: %s: its sequence number is not newer than the last accepted (another "
                  "host commanding this node?)",
                  cmd);
+        break;
+    case FW_REASON_ORDER:
+        snprintf(buf, cap,
+                 "rejected: order: %s: not the next row of its trajectory (the controller expects sequence number "
+                 "%d): a row before it was refused or lost; nothing was taken (send again from the first row not "
+                 "acknowledged)",
+                 cmd, field);
+        break;
+    case FW_REASON_ENDED:
+        ended_text(buf, cap, cmd, field & 15, field >> 4, where);
         break;
     case FW_REASON_INCOMPLETE:
         snprintf(buf, cap, "rejected: incomplete: %s: a part of its pose did not arrive (frames lost on the bus?)", cmd);

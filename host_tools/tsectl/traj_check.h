@@ -1,8 +1,5 @@
-/* A whole trajectory file checked before anything is sent, by the controller's own rules: the
- * firmware's trajectory validator (fw/traj.h) with the limits the controller derives from its
- * parameters (fw/limits.h), starting at rest from the pose and slides it reports.  What passes here
- * can still be refused while streaming (the controller rounds to its float and its exact slides),
- * but only at a margin's width. */
+/* A whole trajectory file checked before anything is sent: the shared checker (traj_checker.h,
+ * the controller's own validator) over the file's rows. */
 #ifndef TSECTL_TRAJ_CHECK_H
 #define TSECTL_TRAJ_CHECK_H
 
@@ -11,10 +8,6 @@
 #include "fw/params.h"
 #include "fw/proto.h"
 #include "traj_file.h"
-
-/* The configuration tse-sim and tse-fw run (system.md): 1 kHz control segments, 200 kHz steps. */
-#define TSECTL_SEGMENT_HZ 1000u
-#define TSECTL_STEP_HZ 200000u
 
 typedef struct {
     int row;            /* index of the first refused row, or -1 */

@@ -12,7 +12,8 @@ T=$1
 check "move --help needs no bus (exit 0)" test $rc -eq 0
 check "move --help shows move's synopsis" grep -q "move X Y Z ROLL PITCH YAW" "$tmp/e"
 "$T" help trajectory >"$tmp/e" 2>&1
-check "trajectory help says what t is measured from" grep -q "t is measured from the moment the controller takes the first row" "$tmp/e"
+check "trajectory help says what t is measured from" grep -q "t is measured from the moment the controller starts the trajectory" "$tmp/e"
+check "trajectory help says no hold row is needed" grep -q "so no hold row is needed at the start" "$tmp/e"
 check "trajectory help says what the first row must satisfy" grep -q "the first row must start gently from rest" "$tmp/e"
 "$T" --iface x --node 1 params --help >"$tmp/e" 2>&1; check "params --help with options exits 0" test $? -eq 0
 "$T" --iface x status >/dev/null 2>"$tmp/e"; rc=$?

@@ -1,0 +1,43 @@
+#include "traj_checker.h"
+
+#include <math.h>
+
+#include "fw/limits.h"
+#include "fw/reject.h"
+
+int traj_checker_start(traj_checker *c, const fw_param_set *s, const double pose0[6], const double q0[6])
+{
+    if (fw_limits_from_params(s, TRAJ_CHECK_STEP_HZ, TRAJ_CHECK_SEGMENT_HZ, &c->g, &c->lim) != 0)
+        return -1;
+    tse_real pose[6], q[6];
+    for (int k = 0; k < 6; ++k) {
+        pose[k] = (tse_real)pose0[k];
+        q[k] = (tse_real)q0[k];
+    }
+    fw_traj_start(&c->t, &c->lim, pose, q);
+    return 0;
+}
+
+int traj_checker_push(traj_checker *c, uint32_t dt_us, const double pose[6], bool last,
+                      int32_t reject[PROTO_MAX_FIELDS])
+{
+    /* What the controller makes of the staged parts (commands.c): micro-units times 1e-6. */
+    tse_real p[6];
+    for (int k = 0; k < 6; ++k)
+        p[k] = (tse_real)lround(pose[k] * 1e6) * TSE_R(1e-6);
+    fw_plan_result why;
+    if (fw_traj_push(&c->t, &c->g, &c->lim, p, dt_us, last, &why) != 0) {
+        fw_reject_values(proto_table[PM_TRAJ_COMMIT].function, 0, why.reason, 0, &why, reject);
+        return 1;
+    }
+    /* The queue holds what execution has not reached; here nothing runs, so drain it. */
+    tse_real at[6];
+    fw_traj_pose(&c->t, fw_traj_end_us(&c->t), at);
+    return 0;
+}
+
+void traj_checker_peaks(const traj_checker *c, double *v_peak, double *a_peak)
+{
+    *v_peak = (double)c->t.chk.v_ratio;
+    *a_peak = (double)c->t.chk.a_ratio;
+}

@@ -1,0 +1,40 @@
+/* A trajectory checked row by row before anything is sent, by the controller's own rules: the
+ * firmware's trajectory validator (fw/traj.h) with the limits the controller derives from its
+ * parameters (fw/limits.h), from rest at the pose and slides it reports, on the rows as the wire
+ * carries them (poses in whole micrometres and microradians, times in whole microseconds).  What
+ * passes here can still be refused while streaming (the board computes in float, and the slides
+ * it starts from are its exact ones), but only at a margin's width.  No heap, no I/O. */
+#ifndef TSE_TRAJ_CHECKER_H
+#define TSE_TRAJ_CHECKER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "fw/params.h"
+#include "fw/proto_table.h"
+#include "fw/traj.h"
+
+/* The configuration tse-sim and tse-fw run (system.md): 1 kHz control segments, 200 kHz steps. */
+#define TRAJ_CHECK_SEGMENT_HZ 1000u
+#define TRAJ_CHECK_STEP_HZ 200000u
+
+typedef struct {
+    fw_traj t; /* large (the queue): keep the checker off small stacks */
+    tse_geometry g;
+    fw_limits lim;
+} traj_checker;
+
+/* Starts at rest at pose0 [m, rad] with slides q0 [m] under parameter set s.  Returns 0, or -1
+ * when the controller would refuse the set itself. */
+int traj_checker_start(traj_checker *c, const fw_param_set *s, const double pose0[6], const double q0[6]);
+
+/* The next row, dt_us after the previous one (the first: after the start), pose [m, rad] rounded
+ * as the wire rounds it; `last` for the trajectory's last row.  Returns 0, or 1 with the REJECT
+ * the controller would send for it in reject[] (REJECT's fields in table order, seq 0). */
+int traj_checker_push(traj_checker *c, uint32_t dt_us, const double pose[6], bool last,
+                      int32_t reject[PROTO_MAX_FIELDS]);
+
+/* The worst slide speed and acceleration so far against their limits (1 = at the limit). */
+void traj_checker_peaks(const traj_checker *c, double *v_peak, double *a_peak);
+
+#endif
