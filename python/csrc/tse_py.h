@@ -37,6 +37,19 @@ TSE_PY_API void tse_py_params_default(double v[TSE_PY_NPARAMS]);
  * values in v, -1 (not a valid file) or -2 (unreadable) with tse-kin's message in err. */
 TSE_PY_API int tse_py_params_load(const char *path, double v[TSE_PY_NPARAMS], char *err, size_t errlen);
 
+/* The controller's whole-path check of a trajectory, tsectl's (host_tools/traj_check): from rest at
+ * pose0[6] (m, rad) with slides q0[6] (m), under the controller's parameter set params[n_params]
+ * (its raw wire integers in parameter-id order, as PARAM_GET reads them), n rows dt_us[n] apart (the
+ * first from the start) at poses[n][6] (m, rad; rounded as the wire rounds them), the last flagged
+ * last.  Returns 0 when every row passes, 1 when row *row (0-based) would be refused, with the
+ * REJECT's fields the controller would send in reject[7] (function, seq 0, reason, scissor,
+ * kin_status, field, where), -1 when the controller would refuse the set itself, -2 when n_params
+ * is not this library's parameter count.  *v_peak, *a_peak: the worst slide speed and acceleration
+ * checked, against their limits (1 = at the limit). */
+TSE_PY_API int tse_py_traj_check(const int *params, int n_params, const double pose0[6], const double q0[6], long n,
+                                 const unsigned *dt_us, const double *poses, long *row, int reject[7],
+                                 double *v_peak, double *a_peak);
+
 #if defined(TSE_REAL_FLOAT) && TSE_REAL_FLOAT
 #define TSE_PY(name) name##_f
 #else

@@ -13,6 +13,8 @@ import pytest
 from tse import _protocol as P
 from tse import can as tcan
 
+from fake_controller import Recorder
+
 BUILD = Path(__file__).resolve().parents[2] / "build" / "host"
 
 
@@ -90,14 +92,6 @@ def test_rejected_carries_the_reason_scissor_status_and_path_fraction():
     assert str(e).startswith("rejected: kinematics: MOVE_COMMIT: scissor 2 is unreachable at 37.5% of the path")
     e = tcan.Rejected({"function": fn, "seq": 4, "reason": 4, "scissor": 0, "kin_status": 0, "field": 1, "where": 0})
     assert (e.reason, e.state, e.scissor, e.status, e.fraction) == ("state", "disabled", None, None, None)
-
-
-class Recorder(pycan.Listener):
-    def __init__(self):
-        self.frames = []
-
-    def on_message_received(self, msg):
-        self.frames.append(msg)
 
 
 @pytest.fixture

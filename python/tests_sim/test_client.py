@@ -1,9 +1,9 @@
 """tse.can against tse-sim on vcan0 (run by tests/vcan/python_can.sh in the vcan harness, which
 starts the simulator with its log in $TSE_SIM_LOG).  The tests run in file order on one simulated
 robot, as a user's session would: enable, home, a move checked to 10 um by the simulator's plant,
-an unreachable pose refused with nothing moving, a short trajectory, Ctrl-C in waiting calls,
-parameters, e-stop, the watchdog on a killed heartbeat, and a motion stopped by leaving a
-with-block."""
+an unreachable pose refused with nothing moving, a short trajectory, a trajectory another client's
+STOP ends, Ctrl-C in waiting calls, parameters, e-stop, the watchdog on a killed heartbeat, and a
+motion stopped by leaving a with-block."""
 import _thread
 import os
 import re
@@ -110,6 +110,42 @@ def test_short_trajectory_with_progress(ctl):
     assert seen[-1] == (n, n) and [s for s, _ in seen] == list(range(1, n + 1))
     assert_near(plant_at_rest(), rows[-1][1:])
     assert ctl.status().queue_depth == 0
+
+
+def test_a_stop_from_elsewhere_ends_the_trajectory(ctl):
+    """Another client's STOP while this one streams: Ended names it (a STOP, the row not taken),
+    raised at rest, and no row of the stopped trajectory starts another (one motion only)."""
+    start = plant_at_rest()
+    n, rows = 200, []
+    for i in range(n):
+        s = i / (n - 1)
+        e = s * s * s * (10 - 15 * s + 6 * s * s)
+        rows.append((0.02 * (i + 1), start[0] - 0.02 * e, start[1] + 0.01 * e, *start[2:]))
+    before, got = motions(), {}
+
+    def stream():
+        try:
+            ctl.trajectory(rows)
+        except tcan.TseError as e:
+            got["e"] = e
+
+    t = threading.Thread(target=stream)
+    t.start()
+    end = time.monotonic() + 60
+    while motions() == before and time.monotonic() < end:
+        time.sleep(0.05)
+    time.sleep(0.5)
+    with tcan.Controller("vcan0", node=1, timeout=5.0, heartbeat=False) as other:
+        other.stop()
+    t.join(60)
+    e = got.get("e")
+    print(e)
+    assert isinstance(e, tcan.Ended) and (e.ended, e.fault) == ("stop", "none") and 0 < e.row < n
+    assert str(e).startswith("the trajectory was stopped by a STOP that this client did not send")
+    time.sleep(0.5)
+    assert motions() == before + 1
+    st = ctl.status()
+    assert (st.state, st.queue_depth) == ("idle", 0)
 
 
 @pytest.fixture

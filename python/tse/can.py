@@ -13,14 +13,19 @@ sequence number after the controller's last accepted one (read from STATUS), and
 exactly one ACK or REJECT; a REJECT raises Rejected, worded as tsectl words it.
 
 Errors: ValueError for an argument that cannot be sent (nothing is sent), Rejected for a refusal
-by the controller, Fault for a motion that ended in fault or e-stop, Timeout when the controller
-does not answer in time.  All but ValueError derive from TseError.
+by the controller (or by its own rules, checked before sending), Fault for a motion that ended in
+fault or e-stop, Ended (a Fault) for a trajectory the controller ended before its last row (a STOP
+from elsewhere, a fault, an underrun, an e-stop), Timeout when the controller does not answer in
+time.  All but ValueError derive from TseError.
 """
 
+import contextlib
+import ctypes
 import math
 import queue
 import threading
 import time
+import warnings
 from collections import namedtuple
 
 from ._needs import need
@@ -29,8 +34,8 @@ _pycan = need("can", "python3-can", "tse.can")
 
 from . import _protocol as _P
 
-__all__ = ["Controller", "Status", "Telemetry", "MoveInfo", "TseError", "Rejected", "Fault", "Timeout",
-           "encode", "decode", "reject_words"]
+__all__ = ["Controller", "Status", "Telemetry", "MoveInfo", "Streamed", "TseError", "Rejected", "Fault", "Ended",
+           "Timeout", "encode", "decode", "reject_words"]
 
 # --- The codec, driven by the table --------------------------------------------------------------
 
@@ -132,7 +137,13 @@ and what set its pace ("asked", a plate limit's name such as "plate_vmax", or "s
 stretch over its limit, 1.14 = 14 % over; slide 0 and demand 0 otherwise): the controller's
 MOVE_INFO, kept as Controller.last_move."""
 
+Streamed = namedtuple("Streamed", "rows seconds rows_per_s fill_rows_per_s")
+Streamed.__doc__ = """What trajectory() returns: the rows streamed, the seconds from the first row sent to the last
+acknowledged, the rows per second that makes, and the rows per second until the controller's queue
+first filled (this client's own pace; None if it never filled: then rows_per_s is)."""
+
 _AT_REST = ("idle", "disabled", "fault", "estop")
+_TELEMETRY_FUNCTIONS = frozenset(_P.MESSAGES[m][0] for m in ("SLIDES_A", "SLIDES_B", "SLIDES_C", "FK_A", "FK_B", "FK_C"))
 _SLIDES = ("A1", "B1", "A2", "B2", "A3", "B3")
 
 
@@ -157,6 +168,24 @@ class Fault(TseError):
         super().__init__(text)
         self.state = state
         self.fault = fault
+
+
+class Ended(Fault):
+    """A trajectory the controller ended before its last row, as it reported it (TRAJ_END, and the
+    refusal of a row that came after):
+
+    ended     how: "stop" (a STOP this client did not send), "fault", or "none" (not reported)
+    fault     for "fault", which: "underrun" (the host fell behind), "estop", "watchdog", ...; else "none"
+    row       the first row it did not take (0-based); None when every row was taken
+    late      for an underrun, how late that row came (s), from the controller's refusal of it; None
+              when it had not been sent
+    The robot is at rest when it is raised."""
+
+    def __init__(self, text, ended, fault, row, late, state):
+        super().__init__(text, state, fault)
+        self.ended = ended
+        self.row = row
+        self.late = late
 
 
 class Rejected(TseError):
@@ -228,6 +257,24 @@ def _param_name(pid):
     return _P.PARAMS[pid][0] if 0 <= pid < len(_P.PARAMS) else None
 
 
+def _ended_words(cmd, how, fault, ms):
+    ago = "65.5 s or more" if ms >= 65535 else f"{ms} ms"
+    how, fault = _enum("traj_end", how), _enum("fault", fault)
+    if how == "done":
+        return f"rejected: ended: {cmd}: its trajectory had run to its last row {ago} before this row came"
+    if how == "stop":
+        return f"rejected: ended: {cmd}: its trajectory was ended by a STOP {ago} before this row came; nothing more of it is taken"
+    if how == "fault" and fault == "underrun":
+        return (f"rejected: ended: {cmd}: this row came {ago} late: the controller had run out of path (underrun) and "
+                "stopped the robot; the host must keep the queue ahead (stream faster, or raise traj_lead)")
+    if how == "fault" and fault == "estop":
+        return f"rejected: ended: {cmd}: its trajectory was ended by an e-stop {ago} before this row came"
+    if how == "fault":
+        return f"rejected: ended: {cmd}: its trajectory was ended by a {fault} fault {ago} before this row came"
+    return (f"rejected: ended: {cmd}: no trajectory of this row's identity is running (a trajectory starts with a row "
+            "flagged first, taken while the controller is idle)")
+
+
 def reject_words(raw):
     """A REJECT's fields (raw values, as decode gives them) in tsectl's words:
     "rejected: REASON: explanation" (host_tools/tsectl/reject_text.c; a test holds the two equal)."""
@@ -277,15 +324,55 @@ def reject_words(raw):
     if rn == "stale":
         return (f"rejected: stale: {cmd}: its sequence number is not newer than the last accepted (another host "
                 "commanding this node?)")
+    if rn == "order":
+        return (f"rejected: order: {cmd}: not the next row of its trajectory (the controller expects sequence number "
+                f"{field}): a row before it was refused or lost; nothing was taken (send again from the first row not "
+                "acknowledged)")
+    if rn == "ended":
+        return _ended_words(cmd, field & 15, field >> 4, where)
     if rn == "incomplete":
         return f"rejected: incomplete: {cmd}: a part of its pose did not arrive (frames lost on the bus?)"
     return f"rejected: {rn}: {cmd} (a protocol mismatch between tsectl and the controller?)"
+
+
+# --- The trajectory check, tsectl's (libtse_kin.so) -------------------------------------------------
+
+def _check_rows(params, pose0, slides0, plan):
+    """The controller's whole-path check (tse_py_traj_check) of plan [(dt_us, raw pose)] from rest at
+    pose0 with slides slides0 under the raw parameter set params: (None, None) when every row
+    passes, (row, REJECT fields) for the first it would refuse, None when it refuses the set."""
+    from . import _native  # ctypes only; ImportError saying how to build the library
+    f = _native.load().tse_py_traj_check
+    c_int, c_double, c_long = ctypes.c_int, ctypes.c_double, ctypes.c_long
+    f.restype = c_int
+    f.argtypes = [ctypes.POINTER(c_int), c_int, ctypes.POINTER(c_double), ctypes.POINTER(c_double), c_long,
+                  ctypes.POINTER(ctypes.c_uint), ctypes.POINTER(c_double), ctypes.POINTER(c_long),
+                  ctypes.POINTER(c_int), ctypes.POINTER(c_double), ctypes.POINTER(c_double)]
+    scales = [f[6] for f in _POSE_FIELDS]
+    n = len(plan)
+    poses = (c_double * (6 * n))(*(raw[k] * scales[k] for _dt, raw in plan for k in range(6)))
+    dts = (ctypes.c_uint * n)(*(dt for dt, _raw in plan))
+    row, reject, v_peak, a_peak = c_long(), (c_int * 7)(), c_double(), c_double()
+    rc = f((c_int * len(params))(*params), len(params), (c_double * 6)(*pose0), (c_double * 6)(*slides0), n, dts,
+           poses, ctypes.byref(row), reject, ctypes.byref(v_peak), ctypes.byref(a_peak))
+    if rc == -2:
+        raise TseError("libtse_kin.so and tse/_protocol.py know different parameter tables: rebuild the library")
+    if rc < 0:
+        return None
+    if rc == 0:
+        return None, None
+    return row.value, dict(zip(_FIELDS["REJECT"], reject))
 
 
 # --- Values people write -------------------------------------------------------------------------
 
 def _round_away(x):
     return int(math.floor(abs(x) + 0.5)) * (1 if x >= 0 else -1)
+
+
+# The six pose fields in x, y, z, roll, pitch, yaw order, as the table gives them.
+_POSE_FIELDS = tuple(_field(m, k) for m, k in (("POSE_A", "x"), ("POSE_A", "y"), ("POSE_B", "z"), ("POSE_B", "roll"),
+                                              ("POSE_C", "pitch"), ("POSE_C", "yaw")))
 
 
 def _pose_raw(pose):
@@ -296,15 +383,26 @@ def _pose_raw(pose):
         raise ValueError(f"a pose is six numbers x, y, z (m), roll, pitch, yaw (rad), not {pose!r}") from None
     if len(p) != 6:
         raise ValueError(f"a pose is six numbers x, y, z (m), roll, pitch, yaw (rad), not {len(p)}")
-    names = ("x", "y", "z", "roll", "pitch", "yaw")
-    where = ("POSE_A", "POSE_A", "POSE_B", "POSE_B", "POSE_C", "POSE_C")
     raw = []
-    for k, v in enumerate(p):
-        _n, _t, _o, lo, hi, unit, scale, *_ = _field(where[k], names[k])
+    for v, (name, _t, _o, lo, hi, unit, scale, *_) in zip(p, _POSE_FIELDS):
         if not math.isfinite(v) or not lo <= _round_away(v / scale) <= hi:
-            raise ValueError(f"{names[k]} = {v!r} {unit} is outside the wire's range {lo * scale:g}..{hi * scale:g} {unit}")
+            raise ValueError(f"{name} = {v!r} {unit} is outside the wire's range {lo * scale:g}..{hi * scale:g} {unit}")
         raw.append(_round_away(v / scale))
     return raw
+
+
+def _raw_socketcan(bus):
+    """(send, pack) writing a frame straight to a SocketCAN bus's socket, one system call a frame,
+    or (None, None) for other buses.  python-can's send adds a select and logging to every frame,
+    which a slow machine feels (the vcan harness's emulated VM streams trajectory rows at a fraction
+    of the rate without this)."""
+    try:
+        from can.interfaces.socketcan.socketcan import SocketcanBus, build_can_frame
+    except ImportError:
+        return None, None
+    if isinstance(bus, SocketcanBus) and bus.channel:
+        return bus.socket.send, build_can_frame
+    return None, None
 
 
 # --- The controller ------------------------------------------------------------------------------
@@ -330,20 +428,29 @@ class Controller:
         self.node = node
         self.timeout = float(timeout)
         self._own_bus = bus is None
-        filters = [{"can_id": node, "can_mask": _P.NODE_MASK, "extended": False}]
+        # The kernel passes the node's frames; telemetry only while someone watches (on a slow machine
+        # 120 telemetry frames a second nobody reads fill the socket's queue, and answers are lost).
+        self._filters_all = [{"can_id": node, "can_mask": _P.NODE_MASK, "extended": False}]
+        self._filters_quiet = [{"can_id": fn << _P.NODE_BITS | node, "can_mask": 0x7FF, "extended": False}
+                               for name, (fn, direction, *_rest) in _P.MESSAGES.items()
+                               if direction == "to_host" and fn not in _TELEMETRY_FUNCTIONS]
         if bus is None:
             try:
-                bus = _pycan.Bus(channel=channel, interface=interface, can_filters=filters)
+                bus = _pycan.Bus(channel=channel, interface=interface, can_filters=self._filters_quiet)
             except (OSError, _pycan.CanError, ValueError, ImportError) as e:
                 raise TseError(f"cannot open CAN channel {channel!r} ({interface}): {e}") from e
         self._bus = bus
+        self._raw_send, self._raw_frame = _raw_socketcan(bus)
         self._cond = threading.Condition()
+        self._hold_cond = threading.Condition()  # _reading(): the reader thread waits while _hold
+        self._hold = self._held = False
         self._send_lock = threading.Lock()
         self._cmd_lock = threading.RLock()
         self._status = None
         self.last_move = None     # the MoveInfo of the latest move this object committed
         self._status_serial = 0
         self._answers = []        # (serial, name, fields) of ACK, REJECT and PARAM_VALUE, newest last
+        self._traj_end = None     # the newest TRAJ_END's fields
         self._serial = 0
         self._watchers = []
         self._tel = {}
@@ -377,7 +484,9 @@ class Controller:
             pass
         finally:
             self.stop_heartbeat()
-            self._closed = True
+            with self._hold_cond:
+                self._closed = True
+                self._hold_cond.notify_all()
             self._reader.join(timeout=1.0)
             if self._own_bus:
                 self._bus.shutdown()
@@ -416,28 +525,68 @@ class Controller:
 
     # -- the bus --
     def _send(self, message, node=None, **values):
-        frame = encode(message, self.node if node is None else node, **values)
+        self._send_frames([encode(message, self.node if node is None else node, **values)])
+
+    def _send_frames(self, frames):
         with self._send_lock:
-            self._bus.send(frame, timeout=self.timeout)
+            for frame in frames:
+                if self._raw_send is not None:
+                    data = self._raw_frame(frame)
+                    with contextlib.suppress(OSError):  # a full transmit queue: python-can's send waits
+                        if self._raw_send(data) == len(data):
+                            continue
+                self._bus.send(frame, timeout=self.timeout)
 
     def _read(self):
         while not self._closed:
-            try:
-                frame = self._bus.recv(0.1)
-            except (_pycan.CanError, OSError, ValueError):
-                if self._closed:
-                    return
+            with self._hold_cond:
+                if self._hold:  # a stream reads the bus itself meanwhile
+                    self._held = True
+                    self._hold_cond.notify_all()
+                    self._hold_cond.wait_for(lambda: not self._hold or self._closed)
+                    self._held = False
+            if not self._closed:
+                self._read_one(0.1)
+
+    def _read_one(self, timeout):
+        """Reads a frame (up to timeout s) and takes it in: (name, fields) of a message from this
+        node, else None."""
+        try:
+            frame = self._bus.recv(timeout)
+        except (_pycan.CanError, OSError, ValueError):
+            if not self._closed:
                 time.sleep(0.01)
-                continue
-            if frame is None:
-                continue
-            try:
-                name, node, v = decode(frame)
-            except DecodeError:
-                continue
-            if node != self.node:
-                continue
-            self._take(name, v, frame.timestamp)
+            return None
+        if frame is None:
+            return None
+        if not self._watchers and frame.arbitration_id >> _P.NODE_BITS in _TELEMETRY_FUNCTIONS:
+            self._tel.clear()  # telemetry nobody watches is not worth a decode on a slow machine;
+            return None        # a watcher starts on a period of its own
+        try:
+            name, node, v = decode(frame)
+        except DecodeError:
+            return None
+        if node != self.node:
+            return None
+        self._take(name, v, frame.timestamp)
+        return name, v
+
+    @contextlib.contextmanager
+    def _reading(self):
+        """The caller reads the bus itself (_read_one) while the reader thread waits: a streamed row's
+        answer then reaches the thread that sends the next row without a hand-over between threads,
+        which a slow machine feels."""
+        with self._hold_cond:
+            self._hold = True
+            if not self._hold_cond.wait_for(lambda: self._held or self._closed, timeout=self.timeout):
+                self._hold = False
+                raise Timeout(f"the reader of node {self.node}'s frames did not yield within {self.timeout:g} s")
+        try:
+            yield
+        finally:
+            with self._hold_cond:
+                self._hold = False
+                self._hold_cond.notify_all()
 
     def _take(self, name, v, stamp):
         with self._cond:
@@ -448,6 +597,8 @@ class Controller:
                 self._serial += 1
                 self._answers.append((self._serial, name, v))
                 del self._answers[:-512]
+            elif name == "TRAJ_END":
+                self._traj_end = v
             else:
                 self._telemetry(name, v, stamp)
                 return
@@ -680,19 +831,30 @@ class Controller:
         except Timeout:
             return None
 
+    def _pose_frames(self, seq, raw):
+        return [encode("POSE_A", self.node, seq=seq, x=raw[0], y=raw[1]),
+                encode("POSE_B", self.node, seq=seq, z=raw[2], roll=raw[3]),
+                encode("POSE_C", self.node, seq=seq, pitch=raw[4], yaw=raw[5])]
+
     def _send_pose(self, seq, raw):
-        self._send("POSE_A", seq=seq, x=raw[0], y=raw[1])
-        self._send("POSE_B", seq=seq, z=raw[2], roll=raw[3])
-        self._send("POSE_C", seq=seq, pitch=raw[4], yaw=raw[5])
+        self._send_frames(self._pose_frames(seq, raw))
 
     def trajectory(self, rows, progress=None):
-        """Streams a timed path: rows of (t, x, y, z, roll, pitch, yaw), t in s from the moment
-        the controller takes the first row (the plate at rest where it is), with flow control, and
-        waits until the robot is at rest on the last row.  Every row is checked before anything is
-        sent (ValueError naming the row).  progress(sent, total) is called after each row.  The
-        rule is tsectl's: the path runs to its last row, or (a row refused, a fault, an exception
-        such as KeyboardInterrupt) the robot is stopped with STOP and waited for before the error
-        is raised (Rejected with .row for a refused row); no part of a path is left running."""
+        """Streams a timed path: rows of (t, x, y, z, roll, pitch, yaw), t in s from the moment the
+        controller starts the trajectory (once it holds traj_lead of it; the plate at rest where it
+        is until then), and waits until the robot is at rest on the last row.  Returns Streamed
+        (rows, seconds, rows per second, and rows per second until the controller's queue filled).
+
+        Every row is checked before anything is sent: its values (ValueError naming the row), then
+        the whole path by the controller's own validator, tsectl's (libtse_kin.so), from the
+        controller's parameters, pose and slides: a row it would refuse raises Rejected with .row
+        and nothing is sent.  Rows then stream with the controller's flow control, several in
+        flight.  progress(taken, total) is called as each row is acknowledged.  The rule is
+        tsectl's: the path runs to its last row, or (a row refused, an exception such as
+        KeyboardInterrupt) the robot is stopped with STOP and waited for before the error is raised
+        (Rejected with .row for a refused row); a trajectory the controller ended itself (a STOP
+        from elsewhere, a fault, an underrun, an e-stop) raises Ended once the robot is at rest.
+        No part of a path is left running."""
         rows = [tuple(r) for r in rows]
         if not rows:
             raise ValueError("a trajectory needs at least one row")
@@ -719,38 +881,153 @@ class Controller:
             if st.state != "idle" or not st.homed:
                 raise TseError(f"not started: a trajectory starts at rest from a homed, enabled controller, and node "
                                f"{self.node} is {st.state}{'' if st.homed else ' and not homed'}")
+            self._check_path(plan, rows)
             try:
-                self._stream(plan, rows, st, progress)
+                return self._stream(plan, rows, self._fresh_status(), progress)
+            except Ended:
+                raise
             except BaseException:
                 self._stop_at_rest()
                 raise
 
+    def _check_path(self, plan, rows):
+        """tsectl's check of the whole path before sending (tse_py_traj_check, the controller's
+        validator), from the controller's parameters, pose and slides; Rejected names the row."""
+        params = [self._param_exchange("PARAM_GET", param=pid) for pid in range(len(_P.PARAMS))]
+        with contextlib.closing(self.watch(timeout=1.0)) as w:
+            tel = next((t for t in w if t.pose is not None), None)
+        if tel is None:
+            warnings.warn(f"no telemetry from node {self.node} (telemetry_ms is 0?), so the path cannot be checked "
+                          "from where the robot is before sending; the controller checks each row as it comes",
+                          stacklevel=3)
+            return
+        r = _check_rows(params, tel.pose, tel.slides, plan)
+        if r is None:
+            raise TseError(f"node {self.node}'s parameters give no valid geometry (a firmware mismatch?)")
+        row, reject = r
+        if row is not None:
+            raise Rejected(reject, row=row, prefix=f"row {row} (t = {rows[row][0]:g} s) would be refused; nothing "
+                                                   "was sent: ")
+
     def _stream(self, plan, rows, st, progress):
-        n, seq, free = len(plan), (st.last_seq + 1) & 0xFF, st.queue_free
-        t0 = time.monotonic()
-        i = 0
-        while i < n:
-            while free <= 0:  # flow control: wait for room, as the controller reports it
-                s = self._fresh_status()
-                free = s.queue_free
-                if s.state not in ("moving", "idle"):
-                    raise Fault(f"the controller stopped ({s.state}, fault {s.fault}) while row {i} waited to be sent",
-                                s.state, s.fault)
-            dt, pose = plan[i]
-            self._send_pose(seq, pose)
-            _mark, name, v = self._exchange("TRAJ_COMMIT", seq=seq, dt=dt, flags=1 if i == n - 1 else 0)
-            seq = (seq + 1) & 0xFF
-            if name == "REJECT":
-                if _enum("reason", v["reason"]) == "queue_full":
-                    free = 0  # the status was behind: wait for room, send the row again
-                    continue
-                raise Rejected(v, row=i, prefix=f"row {i} (t = {rows[i][0]:g} s) was refused by the controller: ")
-            free = v["queue_free"]
-            i += 1
-            if progress is not None:
-                progress(i, n)
-        sent = time.monotonic() - t0
-        self._wait_rest(max(sum(dt for dt, _ in plan) * 1e-6 - sent, 0.1), "finishing")
+        """Sends the rows as ACK and STATUS report room, up to TRAJ_WINDOW of them in flight, and
+        reads their answers as they come (in order, as the controller sends them); a row refused
+        queue_full is sent again, with the rows after it (refused order meanwhile), once there is
+        room.  Then waits until at rest."""
+        n, ident = len(plan), (st.last_seq + 1) & 0xFF
+        function = _P.MESSAGES["TRAJ_COMMIT"][0]
+        nxt, taken, flight, credit, resend = 0, 0, [], st.queue_free, None
+        ended, ended_row, refusal = False, None, None
+        with self._cond:
+            self._traj_end = None
+        t_first = t_last = None
+        full = None  # (rows taken, time) when the queue first filled
+        t_answer = time.monotonic()
+        with self._reading():
+            while taken < n:
+                while not ended and resend is None and nxt < n and len(flight) < _P.TRAJ_WINDOW and credit > 0:
+                    seq, (dt, pose) = (ident + nxt) & 0xFF, plan[nxt]
+                    flags = (_P.TRAJ_FIRST if nxt == 0 else 0) | (_P.TRAJ_LAST if nxt == n - 1 else 0)
+                    self._send_frames(self._pose_frames(seq, pose) +
+                                      [encode("TRAJ_COMMIT", self.node, seq=seq, dt=dt, flags=flags, traj=ident)])
+                    now = time.monotonic()
+                    if not flight:
+                        t_answer = now
+                    if nxt == 0:
+                        t_first = now
+                    flight.append(nxt)
+                    nxt, credit = nxt + 1, credit - 1
+                ended = ended or self._ended_by(ident) is not None
+                if ended and not flight:
+                    break
+                got = self._read_one(0.05)
+                name, v = got if got is not None else (None, None)
+                if name in ("ACK", "REJECT") and v["function"] == function and flight and \
+                        v["seq"] == (ident + flight[0]) & 0xFF:
+                    i = flight.pop(0)
+                    t_answer = time.monotonic()
+                    if name == "ACK":
+                        taken, t_last, credit = taken + 1, t_answer, v["queue_free"] - len(flight)
+                        if v["queue_free"] == 0 and full is None:
+                            full = taken, t_answer
+                        if progress is not None:
+                            progress(taken, n)
+                        continue
+                    reason = _enum("reason", v["reason"])
+                    if reason == "queue_full" and resend is None:
+                        resend, credit = i, 0  # a report was behind: the rows after it are refused "order"
+                    elif reason == "order" and resend is not None:
+                        pass
+                    elif reason == "ended":
+                        ended = True
+                        if ended_row is None:
+                            ended_row, refusal = i, v
+                    else:
+                        raise Rejected(v, row=i, prefix=f"row {i} (t = {rows[i][0]:g} s) was refused by the controller: ")
+                    if resend is not None and not flight:
+                        nxt, resend = resend, None
+                elif name == "STATUS":
+                    credit = v["queue_free"] - len(flight)  # rows in flight take slots it does not know of yet
+                    if _enum("state", v["state"]) in ("fault", "estop") and taken > 0:
+                        ended = True  # its TRAJ_END says how, if it came
+                if flight and time.monotonic() - t_answer > self.timeout:
+                    raise Timeout(f"no answer to row {flight[0]} from node {self.node} within {self.timeout:g} s")
+        if taken < n:
+            self._raise_ended(ident, rows, taken, ended_row, refusal, t_first, t_last)
+        seconds = t_last - t_first
+        fill = (full[0] - 1) / (full[1] - t_first) if full and full[0] > 1 and full[1] > t_first else None
+        done = Streamed(n, seconds, (n - 1) / seconds if seconds > 0 else 0.0, fill)
+        try:
+            self._wait_rest(max(sum(dt for dt, _ in plan) * 1e-6 - seconds, 0.1), "finishing")
+        except Fault:
+            if self._ended_by(ident) is None:
+                raise
+        if self._ended_by(ident) is not None:
+            self._raise_ended(ident, rows, taken, ended_row, refusal, t_first, t_last, at_rest=True)
+        return done
+
+    def _ended_by(self, ident):
+        """This trajectory's TRAJ_END, when it says the trajectory ended before its last row."""
+        end = self._traj_end
+        if end is not None and end["traj"] == ident and _enum("traj_end", end["ended"]) != "done":
+            return end
+        return None
+
+    def _raise_ended(self, ident, rows, taken, ended_row, refusal, t_first, t_last, at_rest=False):
+        """Waits until at rest (the controller is stopping already), then raises Ended as tsectl
+        words it."""
+        if not at_rest:
+            try:
+                self._wait_rest(0, "stopping")
+            except Fault:
+                pass  # at rest in fault: the end says which
+        end, n = self._ended_by(ident), len(rows)
+        if end is not None:
+            how, fault, row = _enum("traj_end", end["ended"]), _enum("fault", end["fault"]), end["rows"]
+        elif refusal is not None:
+            how, fault, row = _enum("traj_end", refusal["field"] & 15), _enum("fault", refusal["field"] >> 4), ended_row
+        else:
+            how, fault, row = "none", "none", taken
+        what = ("was stopped by a STOP that this client did not send (another terminal or program)" if how == "stop"
+                else "ran out of path at the controller (underrun): the host fell behind" if fault == "underrun"
+                else "was ended by an e-stop" if fault == "estop"
+                else f"was ended by a {fault} fault" if how == "fault" else "was ended by the controller")
+        if row < n:
+            text = f"the trajectory {what} after {row} of {n} rows; row {row} (t = {rows[row][0]:g} s) was not taken"
+        else:
+            text = (f"the trajectory {what} before it reached its last row (t = {rows[-1][0]:g} s); all {n} rows had "
+                    "been taken")
+        late = None
+        if refusal is not None and ended_row == row:
+            text += f"; row {row} was refused: {reject_words(refusal)}"
+            late = refusal["where"] * 1e-3 if fault == "underrun" else None
+        elif fault == "underrun":
+            text += f"; row {row} had not been sent when the controller needed it"
+        if fault == "underrun" and taken > 1 and t_last is not None and t_last > t_first:
+            text += (f"; streaming reached {(taken - 1) / (t_last - t_first):.0f} rows/s, the rows come "
+                     f"{n / rows[-1][0]:.0f} per second")
+        st = self._status
+        raise Ended(text, how, fault, row if row < n else None, late, st.state if st is not None else None)
 
     def _stop_at_rest(self):
         self._halt()
@@ -761,6 +1038,7 @@ class Controller:
         busy; beyond that the newest are dropped."""
         q = queue.Queue(maxsize=maxlen)
         self._watchers.append(q)
+        self._filter_telemetry()
         try:
             last = time.monotonic()
             while not self._closed:  # a closed controller ends its watches
@@ -774,6 +1052,13 @@ class Controller:
                 yield item
         finally:
             self._watchers.remove(q)
+            self._filter_telemetry()
+
+    def _filter_telemetry(self):
+        """Telemetry through the bus's filter only while someone watches (a bus this object opened)."""
+        if self._own_bus and not self._closed:
+            with contextlib.suppress(_pycan.CanError, OSError, ValueError):
+                self._bus.set_filters(self._filters_all if self._watchers else self._filters_quiet)
 
     # -- parameters (ctl.params) --
     def _param_value(self, mark, pid):

@@ -17,7 +17,7 @@ ik and fk run a large batch on several threads (threads=None: one per CPU) with 
 the answers do not depend on the thread count.
 
 The library is found at $TSE_KIN_LIB, next to this package (an installed copy), or in a build
-directory (build/host/python/libtse_kin.so beside the source tree's python/).
+directory (build/host/python/libtse_kin.so beside the source tree's python/): see tse/_native.py.
 """
 
 import ctypes
@@ -25,34 +25,18 @@ import enum
 import math
 import os
 from collections import namedtuple
-from pathlib import Path
 
 from ._needs import need
 
 np = need("numpy", "python3-numpy", "tse.kin")
 
+from . import _native
+
 __all__ = ["Status", "Params", "IKResult", "FKResult", "JacobianResult", "ik", "fk", "jacobian", "haf",
            "sigma_z", "workspace", "workspace_points", "library_path"]
 
-
-def _find_library():
-    env = os.environ.get("TSE_KIN_LIB")
-    if env:
-        return Path(env)
-    here = Path(__file__).resolve().parent
-    candidates = [here / "libtse_kin.so"]
-    root = here.parent.parent  # the source tree, when imported from python/
-    for preset in ("host", "release"):
-        candidates.append(root / "build" / preset / "python" / "libtse_kin.so")
-    for c in candidates:
-        if c.exists():
-            return c
-    raise ImportError("tse.kin: libtse_kin.so not found; build the tse_kin_py target "
-                      "(cmake --build --preset host) or set TSE_KIN_LIB to its path")
-
-
-library_path = _find_library()
-_lib = ctypes.CDLL(str(library_path))
+library_path = _native.find_library()
+_lib = _native.load()
 
 _dp = ctypes.POINTER(ctypes.c_double)
 _ip = ctypes.POINTER(ctypes.c_int)
