@@ -50,8 +50,8 @@ static void intro(FILE *out)
                  "along what it holds and latches `underrun`. `TRAJ_END` says once how each trajectory ended.\n\n"
                  "A host keeps the queue ahead by sending rows as `ACK` and `STATUS` report free slots, with up\n"
                  "to %d rows in flight (sent, not yet answered): %d rows are %d frames, at most half the board's\n"
-                 "receive ring. A row refused `queue_full` is sent again, in order, with the rows\n"
-                 "after it (refused `order` meanwhile), once there is room.\n\n",
+                 "receive ring. A row refused `queue_full` is sent again, in order, with the rows after it\n"
+                 "(refused `order` meanwhile), once there is room.\n\n",
             PROTO_TRAJ_WINDOW, PROTO_TRAJ_WINDOW, 4 * PROTO_TRAJ_WINDOW);
     fprintf(out, "In the message tables, a field's physical value is its raw value times its \"one raw count\";\n"
                  "`-` marks a plain number or code.\n");
