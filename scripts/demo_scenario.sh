@@ -17,9 +17,9 @@ for target in "0.10 -0.05 1.10 0.10 -0.05 0.20" "-0.15 0.10 0.70 -0.05 0.08 -0.3
 done
 echo "--- a pose outside the workspace is refused, with its reason"
 $T move 0.8 0 1.0 0 0 0
-echo "--- a trajectory streamed with flow control (3 cm by 2 cm in 3 s)"
-awk 'BEGIN { print "t,x,y,z,roll,pitch,yaw"; n = 150; for (i = 1; i <= n; ++i) { s = i / n; e = s*s*s*(10 - 15*s + 6*s*s);
-      printf "%.3f,%.6f,%.6f,1.40,0,0,0\n", 1.0 + 0.02 * i, 0.03 * e, 0.02 * e } }' >traj.csv
+echo "--- a trajectory streamed with flow control (3 cm by 2 cm in 3 s, rows 20 ms apart from where the plate is)"
+awk 'BEGIN { print "t,x,y,z,roll,pitch,yaw"; n = 150; for (i = 0; i < n; ++i) { s = i / (n - 1); e = s*s*s*(10 - 15*s + 6*s*s);
+      printf "%.3f,%.6f,%.6f,1.40,0,0,0\n", 0.02 * (i + 1), 0.03 * e, 0.02 * e } }' >traj.csv
 $T trajectory traj.csv
 echo "--- live telemetry"
 $T watch --count 2

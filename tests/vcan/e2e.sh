@@ -61,9 +61,10 @@ check "unreachable pose rejected (exit 3, reason kinematics)" "[ $rc -eq 3 ] && 
 check "no motion for the rejected pose" "[ $(grep -c 'motion accepted' sim.log) -eq $before ]"
 
 # A trajectory: 3 cm and 2 cm along X and Y in 3 s with minimum-jerk easing, streamed with flow
-# control (busybox awk has no sine: a polynomial path).
-awk 'BEGIN { print "t,x,y,z,roll,pitch,yaw"; n = 150; for (i = 1; i <= n; ++i) { s = i / n; e = s*s*s*(10 - 15*s + 6*s*s);
-      printf "%.3f,%.6f,%.6f,1.45,0,0,0\n", 1.0 + 0.02 * i, 0.03 * e, 0.02 * e } }' >traj.csv
+# control, its first row at the current pose and no hold row (busybox awk has no sine: a polynomial
+# path).
+awk 'BEGIN { print "t,x,y,z,roll,pitch,yaw"; n = 150; for (i = 0; i < n; ++i) { s = i / (n - 1); e = s*s*s*(10 - 15*s + 6*s*s);
+      printf "%.3f,%.6f,%.6f,1.45,0,0,0\n", 0.02 * (i + 1), 0.03 * e, 0.02 * e } }' >traj.csv
 t0=$(date +%s)
 $T trajectory traj.csv >traj_out.txt 2>&1; rc=$?
 t1=$(date +%s)
@@ -82,25 +83,28 @@ check "a jump from rest is refused before sending (exit 3, jump.csv:2, timing)" 
   "[ $rc -eq 3 ] && grep -q 'jump.csv:2: row 1' out.txt && grep -q 'timing' out.txt && grep -q 'nothing was sent' out.txt"
 check "no motion for the refused file" "[ $(grep -c 'motion accepted' sim.log) -eq $before ]"
 
-# A STOP while streaming: the streamer stops the robot, waits for rest and exits 3 naming its row;
+# A STOP from another terminal while streaming: the streamer names it, and the row it stopped at,
+# waits for rest and exits 3; no row of the stopped trajectory starts another (one motion only);
 # the controller's queue is empty at rest.
-# (A second's hold first, and 40 ms rows: streaming under QEMU's TCG sends about 35 rows/s.)
-awk 'BEGIN { print "t,x,y,z,roll,pitch,yaw"; print "1.0,0.03,0.02,1.45,0,0,0"; n = 150;
-      for (i = 1; i <= n; ++i) { s = i / n; e = s*s*s*(10 - 15*s + 6*s*s);
-      printf "%.3f,%.6f,%.6f,1.45,0,0,0\n", 1.0 + 0.04 * i, 0.03 - 0.05 * e, 0.02 }}' >long.csv
+awk 'BEGIN { print "t,x,y,z,roll,pitch,yaw"; n = 150;
+      for (i = 0; i < n; ++i) { s = i / (n - 1); e = s*s*s*(10 - 15*s + 6*s*s);
+      printf "%.3f,%.6f,%.6f,1.45,0,0,0\n", 0.04 * (i + 1), 0.03 - 0.05 * e, 0.02 }}' >long.csv
+before=$(grep -c 'motion accepted' sim.log)
 $T trajectory long.csv >long_out.txt 2>&1 &
 streamer=$!
 sleep 4
 $T stop >out.txt 2>&1
 wait $streamer; rc=$?
 sed 's/^/  | /' long_out.txt
-check "a STOP while streaming: the streamer exits 3 naming a row of long.csv" "[ $rc -eq 3 ] && grep -q 'row [0-9]' long_out.txt"
+check "a STOP from another terminal: the streamer exits 3 naming it and the row of long.csv" \
+  "[ $rc -eq 3 ] && grep -q 'long.csv:[0-9]*: the trajectory was stopped by a STOP that tsectl did not send .* rows; row [0-9]' long_out.txt"
+check "no row of the stopped trajectory started another (one motion)" "[ \$(grep -c 'motion accepted' sim.log) -eq \$((before + 1)) ]"
 $T status >out.txt 2>&1
 sed -n 's/^/  | /;1p' out.txt
 check "after the STOP the controller is idle with an empty queue (free 32)" "grep -q 'state idle.*queue 0 (free 32)' out.txt"
 $T move 0.03 0.02 1.45 0 0 0 --duration 1 --wait >/dev/null 2>&1
-awk 'BEGIN { print "1.0,0.03,0.02,1.45,0,0,0"; n = 40; for (i = 1; i <= n; ++i) { s = i / n; e = s*s*s*(10 - 15*s + 6*s*s);
-      printf "%.3f,%.6f,0.02,1.45,0,0,0\n", 1.0 + 0.04 * i, 0.03 - 0.03 * e }}' >again.csv
+awk 'BEGIN { n = 40; for (i = 0; i < n; ++i) { s = i / (n - 1); e = s*s*s*(10 - 15*s + 6*s*s);
+      printf "%.3f,%.6f,0.02,1.45,0,0,0\n", 0.04 * (i + 1), 0.03 - 0.03 * e }}' >again.csv
 $T trajectory again.csv >out.txt 2>&1; rc=$?
 [ $rc -eq 0 ] || sed 's/^/  | /' out.txt
 check "a new trajectory after the STOP is taken and runs to its end" "[ $rc -eq 0 ] && near 0 0.02 1.45 0 0 0"

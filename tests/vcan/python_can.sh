@@ -7,6 +7,7 @@ pass=0
 fail=0
 check() { if eval "$2"; then pass=$((pass + 1)); echo "ok: $1"; else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
 
+export TSE_KIN_LIB=$PWD/libtse_kin.so # tse.can's trajectory check (a data file)
 tse-sim --iface vcan0 --node 1 >sim.log 2>&1 &
 sim=$!
 sleep 0.5
