@@ -25,6 +25,7 @@ TSE_SIM_LOG=$PWD/sim.log python3 -m pytest -p no:cacheprovider -v -s "$root/test
 rc=$?
 cat pytest.out
 check "pytest: tse.can against tse-sim" "[ $rc -eq 0 ]"
+[ $rc -eq 0 ] || { echo "the simulator's states:"; grep -E 'state|accepted|late' sim.log | tail -40 | sed 's/^/  | /'; }
 
 python3 "$root/examples/move_and_plot.py" --channel vcan0 --node 1 --csv telemetry.csv >example.out 2>&1
 rc=$?
