@@ -64,6 +64,17 @@ static void assert_status_queue_empty(fw_state want)
     assert_int_equal(st.v[4], FW_TRAJ_CAPACITY);
 }
 
+/* The trajectory runs to its end: at rest within 2 s, no fault, exactly at its last row p. */
+static void ends_at(const double p[6])
+{
+    for (int i = 0; i < 200 && C.state != FW_STATE_IDLE; ++i)
+        run(10);
+    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(C.fault, FW_FAULT_NONE);
+    for (int k = 0; k < 6; ++k)
+        assert_true(fabs(C.pose[k] - p[k]) < 1e-9);
+}
+
 static void test_stop_drops_queue(void **state)
 {
     (void)state;
@@ -102,12 +113,7 @@ static void test_stop_drops_queue(void **state)
     fw_poll(&C);
     assert_int_equal(acks_since(from, TRAJ_FN), 10);
     assert_int_equal(fw_traj_end_us(&C.traj), 500000);
-    for (int i = 0; i < 200 && C.state != FW_STATE_IDLE; ++i)
-        run(10);
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
-    for (int k = 0; k < 6; ++k)
-        assert_true(fabs(C.pose[k] - p[k]) < 1e-9);
+    ends_at(p);
     tse_ik_result ik;
     assert_int_equal(tse_ik(&C.geom, p, NULL, &ik), TSE_OK);
     for (int k = 0; k < 6; ++k)
@@ -218,6 +224,32 @@ static void assert_traj_end(unsigned from, fw_traj_end how, fw_fault fault, int 
     assert_int_equal(end.v[3], rows);
 }
 
+/* From IDLE: a trajectory under way (stream_and_go, n rows), then the command m.  Returns the tx
+ * index from before the rows; *tail: its newest row's pose. */
+static unsigned streaming_then(unsigned n, proto_msg m, double tail[6])
+{
+    reach(FW_STATE_IDLE);
+    const unsigned from = F.tx_count;
+    stream_and_go(n);
+    memcpy(tail, C.traj.tail.pose, 6 * sizeof tail[0]);
+    cmd(m);
+    fw_poll(&C);
+    return from;
+}
+
+/* The next row of the trajectory (1 mm above *p, which it updates), sent now: its REJECT, which
+ * must say `ended`. */
+static proto_message row_after_end(double p[6])
+{
+    const unsigned from = F.tx_count;
+    p[2] += 0.001;
+    point(p, 50000, false);
+    fw_poll(&C);
+    const proto_message r = reject_of(from, TRAJ_FN);
+    assert_int_equal(r.v[2], FW_REASON_ENDED);
+    return r;
+}
+
 static unsigned answers_since(unsigned from, uint8_t function)
 {
     unsigned n = 0;
@@ -227,6 +259,14 @@ static unsigned answers_since(unsigned from, uint8_t function)
             ++n;
     }
     return n;
+}
+
+/* From IDLE and homed: the rest pose in p; returns its Z. */
+static double idle_at(double p[6])
+{
+    reach(FW_STATE_IDLE);
+    memcpy(p, C.pose, 6 * sizeof p[0]);
+    return p[2];
 }
 
 /* The i-th of n rows of a 2 mm rise in Z with minimum-jerk easing from the pose z0 (as the wire
@@ -244,10 +284,8 @@ static void rise_row(double p[6], double z0, int i, int n)
 static void test_first_rows_wait_for_the_lead(void **state)
 {
     (void)state;
-    reach(FW_STATE_IDLE);
     double p[6];
-    memcpy(p, C.pose, sizeof p);
-    const double z0 = p[2];
+    const double z0 = idle_at(p);
     const int n = 40;
     const unsigned from = F.tx_count;
     rise_row(p, z0, 0, n);
@@ -290,10 +328,8 @@ static void test_first_rows_wait_for_the_lead(void **state)
 static void test_last_row_or_full_queue_starts_the_clock(void **state)
 {
     (void)state;
-    reach(FW_STATE_IDLE);
     double p[6];
-    memcpy(p, C.pose, sizeof p);
-    double z0 = p[2];
+    double z0 = idle_at(p);
     for (int i = 1; i <= 3; ++i) {
         rise_row(p, z0, i, 40);
         traj_row(p, 20000, i == 1, i == 3);
@@ -332,10 +368,8 @@ static void test_last_row_or_full_queue_starts_the_clock(void **state)
 static void test_rows_after_a_full_queue_wait_their_turn(void **state)
 {
     (void)state;
-    reach(FW_STATE_IDLE);
     double p[6];
-    memcpy(p, C.pose, sizeof p);
-    const double z0 = p[2];
+    const double z0 = idle_at(p);
     const int n = FW_TRAJ_CAPACITY + 2;
     uint8_t seqs[FW_TRAJ_CAPACITY + 2];
     unsigned from = F.tx_count;
@@ -374,12 +408,7 @@ static void test_rows_after_a_full_queue_wait_their_turn(void **state)
     fw_poll(&C);
     assert_int_equal(acks_since(from, TRAJ_FN), 2);
     assert_int_equal(fw_traj_end_us(&C.traj), 20000u * (unsigned)n);
-    for (int i = 0; i < 200 && C.state != FW_STATE_IDLE; ++i)
-        run(10);
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
-    for (int k = 0; k < 6; ++k)
-        assert_true(fabs(C.pose[k] - p[k]) < 1e-9);
+    ends_at(p);
 }
 
 /* The host stops sending: the controller reports an underrun, naming the rows it took (the one it
@@ -391,10 +420,8 @@ static void test_rows_after_a_full_queue_wait_their_turn(void **state)
 static void test_underrun_is_reported_with_its_row_and_lateness(void **state)
 {
     (void)state;
-    reach(FW_STATE_IDLE);
     double p[6];
-    memcpy(p, C.pose, sizeof p);
-    const double z0 = p[2];
+    const double z0 = idle_at(p);
     unsigned from = F.tx_count;
     for (int i = 0; i < 15; ++i) {
         p[2] = (double)lround((z0 + 1e-6 * i) * 1e6) * 1e-6;
@@ -433,13 +460,8 @@ static void test_underrun_is_reported_with_its_row_and_lateness(void **state)
 static void test_rows_of_a_stopped_trajectory_never_start_another(void **state)
 {
     (void)state;
-    reach(FW_STATE_IDLE);
-    unsigned from = F.tx_count;
-    stream_and_go(30);
     double p[6];
-    memcpy(p, C.traj.tail.pose, sizeof p);
-    cmd(PM_STOP);
-    fw_poll(&C);
+    unsigned from = streaming_then(30, PM_STOP, p);
     const uint64_t t_stop = F.now_us;
     run(10);
     assert_traj_end(from, FW_TRAJ_END_STOP, FW_FAULT_NONE, 30);
@@ -450,28 +472,20 @@ static void test_rows_of_a_stopped_trajectory_never_start_another(void **state)
     /* The streaming host goes on: rows of its trajectory reach an idle controller. */
     const uint64_t pulses = F.pulses;
     from = F.tx_count;
-    for (int i = 0; i < 3; ++i) {
-        p[2] += 0.001;
-        point(p, 50000, false);
-        fw_poll(&C);
-    }
     const uint64_t since_ms = (F.now_us - t_stop) / 1000u;
+    for (int i = 0; i < 3; ++i) {
+        const proto_message r = row_after_end(p);
+        assert_int_equal(r.v[5], FW_TRAJ_END_STOP);
+        assert_true(r.v[6] >= (int32_t)since_ms - 1 && r.v[6] <= (int32_t)since_ms + 1);
+    }
     run(100);
     assert_int_equal(C.state, FW_STATE_IDLE);
     assert_true(F.pulses == pulses);
     assert_int_equal(acks_since(from, TRAJ_FN), 0);
     assert_int_equal(answers_since(from, TRAJ_FN), 3);
-    const proto_message r = reject_of(from, TRAJ_FN);
-    assert_int_equal(r.v[2], FW_REASON_ENDED);
-    assert_int_equal(r.v[5], FW_TRAJ_END_STOP);
-    assert_true(r.v[6] >= (int32_t)since_ms - 1 && r.v[6] <= (int32_t)since_ms + 1);
     /* A stranger's row: no trajectory of its identity ran. */
-    from = F.tx_count;
     traj_id = (uint8_t)(traj_id + 100u);
-    point(p, 50000, false);
-    fw_poll(&C);
-    const proto_message s = reject_of(from, TRAJ_FN);
-    assert_int_equal(s.v[2], FW_REASON_ENDED);
+    const proto_message s = row_after_end(p);
     assert_int_equal(s.v[5], FW_TRAJ_END_NONE);
     assert_int_equal(s.v[6], 0);
     /* A first row starts a new one. */
@@ -488,21 +502,11 @@ static void test_rows_of_a_stopped_trajectory_never_start_another(void **state)
 static void test_estop_ends_the_trajectory(void **state)
 {
     (void)state;
-    reach(FW_STATE_IDLE);
-    unsigned from = F.tx_count;
-    stream_and_go(20);
     double p[6];
-    memcpy(p, C.traj.tail.pose, sizeof p);
-    cmd(PM_ESTOP);
-    fw_poll(&C);
+    const unsigned from = streaming_then(20, PM_ESTOP, p);
     fw_poll(&C);
     assert_traj_end(from, FW_TRAJ_END_FAULT, FW_FAULT_ESTOP, 20);
-    from = F.tx_count;
-    p[2] += 0.001;
-    point(p, 50000, false);
-    fw_poll(&C);
-    const proto_message r = reject_of(from, TRAJ_FN);
-    assert_int_equal(r.v[2], FW_REASON_ENDED);
+    const proto_message r = row_after_end(p);
     assert_int_equal(r.v[5], FW_TRAJ_END_FAULT + 16 * FW_FAULT_ESTOP);
 }
 
