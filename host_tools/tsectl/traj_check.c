@@ -22,6 +22,8 @@ int traj_check(const fw_param_set *s, const double pose0[6], const double q0[6],
     r->row = -1;
     if (fw_limits_from_params(s, TSECTL_STEP_HZ, TSECTL_SEGMENT_HZ, &g, &lim) != 0)
         return -1;
+    r->v_limit = (double)lim.slide_vmax;
+    r->v_by = lim.vmax_by;
     tse_real pose[6], q[6];
     for (int k = 0; k < 6; ++k) {
         pose[k] = (tse_real)pose0[k];

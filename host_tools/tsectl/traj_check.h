@@ -8,18 +8,21 @@
 
 #include <stdint.h>
 
+#include "fw/limits.h"
 #include "fw/params.h"
 #include "fw/proto.h"
 #include "traj_file.h"
 
-/* The configuration tse-sim and tse-fw run (system.md): 1 kHz control segments, 200 kHz steps. */
-#define TSECTL_SEGMENT_HZ 1000u
-#define TSECTL_STEP_HZ 200000u
+/* The configuration tse-sim and tse-fw run (fw/limits.h): 1 kHz control segments, 200 kHz steps. */
+#define TSECTL_SEGMENT_HZ FW_SEGMENT_HZ
+#define TSECTL_STEP_HZ FW_STEP_HZ
 
 typedef struct {
     int row;            /* index of the first refused row, or -1 */
     proto_message why;  /* a REJECT as the controller would send it for that row */
     double v_peak, a_peak; /* worst slide speed and acceleration against their limits (1 = at the limit) */
+    double v_limit;        /* the slide speed limit in effect [m/s] (fw_limits_from_params) */
+    fw_slide_limit v_by;   /* and what sets it */
 } traj_check_result;
 
 /* The row's dt on the wire: differences of the rows' times in whole microseconds, so the times add
