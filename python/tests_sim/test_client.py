@@ -208,6 +208,11 @@ def test_estop_latches_and_clears(ctl):
     # Steps may have been lost in the abrupt stop: the zero is gone until the next homing.
     assert (st.state, st.fault, st.homed) == ("disabled", "none", False)
     assert ctl.params.set("watchdog_ms", 400) == 400  # disabled: parameters may change
+    # A 4 us STEP pulse leaves 1 us low before the next step 5 us later (200 kHz): the rule named.
+    with pytest.raises(tcan.Rejected) as e:
+        ctl.params["step_pulse_ns"] = 4000
+    assert (e.value.reason, e.value.rule) == ("param_set", "pulse_low")
+    assert str(e.value).startswith("rejected: param_set: step_pulse_ns: the STEP pulse (step_pulse_ns) must leave")
 
 
 def test_watchdog_on_a_killed_heartbeat(ctl):
