@@ -127,8 +127,9 @@ the latest STATUS."""
 
 MoveInfo = namedtuple("MoveInfo", "start bound slide demand")
 MoveInfo.__doc__ = """How an accepted move starts ("rest", "blended" into the running move, or "after" it)
-and what set its pace ("asked", a plate limit's name such as "plate_vmax", or "slide_vmax" and
-"slide_amax" with the slide 1..6 (A1, B1, A2, B2, A3, B3) and what it would have needed without the
+and what set its pace ("asked", a plate limit's name such as "plate_vmax", or "slide_vmax",
+"step_generator" (the slide speed limit in effect when lower than slide_vmax) and "slide_amax" with
+the slide 1..6 (A1, B1, A2, B2, A3, B3) and what it would have needed without the
 stretch over its limit, 1.14 = 14 % over; slide 0 and demand 0 otherwise): the controller's
 MOVE_INFO, kept as Controller.last_move."""
 
