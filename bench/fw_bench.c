@@ -23,7 +23,7 @@ int main(void)
     fw_params_kinematics(&ps, &kp);
     tse_geometry g;
     tse_geometry_init(&g, &kp);
-    const fw_limits lim = {0.18, 0.95, 0.3, 1.0, 10.0, 0.5, 2.0, 1000.0};
+    const fw_limits lim = {0.18, 0.95, 0.3, 1.0, 10.0, 0.5, 2.0, 1000.0, FW_LIMIT_SLIDE_VMAX};
     const tse_real from[6] = {0, 0, 1.0, 0, 0, 0}, to[6] = {0.12, -0.08, 1.3, 0.05, -0.05, 0.2};
     tse_ik_result r;
     tse_ik(&g, from, NULL, &r);

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "fw/controller.h"
+#include "fw/limits.h"
 #include "hal_stm32f4/board_io.h"
 #include "hal_stm32f4/bxcan.h"
 #include "hal_stm32f4/clock.h"
@@ -23,8 +24,9 @@
 #define TSE_BOARD_NODE 1
 #endif
 
-#define CONTROL_HZ 1000u
-#define STEP_HZ 200000u
+/* The rates fw/limits.h promises the host tools (tsectl judges paths and sets with them). */
+#define CONTROL_HZ FW_SEGMENT_HZ
+#define STEP_HZ FW_STEP_HZ
 /* Longer than the longest pause of the main loop: validating a 5 s move takes about 120 ms
  * (scripts/target_bench.sh), a parameter save's sector erase feeds the watchdog itself. */
 #define WATCHDOG_MS 2000u

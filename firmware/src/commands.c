@@ -71,6 +71,13 @@ void fw_reject(fw_controller *c, uint8_t function, uint8_t seq, fw_reason reason
     fw_send(c, PM_REJECT, v);
 }
 
+void fw_reject_param(fw_controller *c, uint8_t function, fw_reason reason, uint16_t id, fw_param_rule rule)
+{
+    int32_t v[PROTO_MAX_FIELDS];
+    fw_reject_param_values(function, reason, id, rule, v);
+    fw_send(c, PM_REJECT, v);
+}
+
 /* Sequence numbers wrap at 256: newer means ahead by 1..127. */
 static bool newer(uint8_t seq, uint8_t than)
 {
@@ -229,13 +236,15 @@ static void param_set(fw_controller *c, const proto_message *m, uint8_t function
 {
     const uint16_t id = (uint16_t)m->v[0];
     fw_param_set next = c->params;
-    const int r = fw_params_set_one(&next, id, m->v[1]);
+    fw_param_fault why;
+    const int r = fw_params_set_one(&next, id, m->v[1], &why);
     if (r != 0) {
-        fw_reject(c, function, 0, (fw_reason)r, (uint8_t)(id > 255 ? 255 : id), NULL);
+        fw_reject_param(c, function, (fw_reason)r, id, r == FW_REASON_PARAM_SET ? why.rule : FW_RULE_NONE);
         return;
     }
-    if (fw_apply_params(c, &next) != 0) {
-        fw_reject(c, function, 0, FW_REASON_PARAM_SET, (uint8_t)id, NULL);
+    const fw_param_rule rule = fw_apply_params(c, &next);
+    if (rule != FW_RULE_NONE) {
+        fw_reject_param(c, function, FW_REASON_PARAM_SET, id, rule);
         return;
     }
     fw_ack(c, function, 0, 0);
@@ -354,7 +363,7 @@ void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
         return;
     case PM_PARAM_GET:
         if (m.v[0] >= FP_COUNT) {
-            fw_reject(c, function, 0, FW_REASON_PARAM_UNKNOWN, (uint8_t)(m.v[0] > 255 ? 255 : m.v[0]), NULL);
+            fw_reject_param(c, function, FW_REASON_PARAM_UNKNOWN, (uint16_t)m.v[0], FW_RULE_NONE);
             return;
         }
         fw_ack(c, function, 0, 0);

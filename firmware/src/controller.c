@@ -52,18 +52,21 @@ int32_t fw_home_switch_steps(const fw_controller *c, int k)
     return (int32_t)((int64_t)c->params.v[FP_HOME_SW_1 + k] * c->params.v[FP_STEPS_PER_M] / 1000000);
 }
 
-int fw_apply_params(fw_controller *c, const fw_param_set *s)
+fw_param_rule fw_apply_params(fw_controller *c, const fw_param_set *s)
 {
     tse_geometry g;
     fw_limits lim;
     stepgen_config sc;
+    const fw_param_rule rule = fw_params_judge_config(s, c->cfg.step_hz, c->cfg.segment_hz).rule;
+    if (rule != FW_RULE_NONE)
+        return rule;
     if (fw_limits_from_params(s, c->cfg.step_hz, c->cfg.segment_hz, &g, &lim) != 0 ||
-        fw_stepgen_config_from_params(s, c->cfg.step_hz, c->cfg.segment_hz, &sc) != 0)
-        return -1;
+        fw_stepgen_config_from_params(s, c->cfg.step_hz, c->cfg.segment_hz, &sc) != FW_RULE_NONE)
+        return FW_RULE_GEOMETRY; /* what the judge passed, these take: not reached */
     int32_t pos[STEPGEN_AXES];
     stepgen_positions(&c->sg, pos);
     if (!stepgen_idle(&c->sg) || stepgen_init(&c->sg, &sc, pos) != 0)
-        return -1; /* parameters change only at rest */
+        return FW_RULE_NOT_AT_REST; /* parameters change only at rest */
     c->overruns_seen = 0; /* the fresh generator counts from zero */
     /* A fresh generator is not halted: an e-stop interrupt before it asked for a halt that must
      * last until the request is completed (the generator is idle, so no step came in between). */
@@ -90,7 +93,7 @@ int fw_apply_params(fw_controller *c, const fw_param_set *s)
     c->params = *s;
     c->geom = g;
     c->lim = lim;
-    return 0;
+    return FW_RULE_NONE;
 }
 
 int fw_init(fw_controller *c, const fw_hal *hal, const fw_config *cfg)

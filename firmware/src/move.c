@@ -87,15 +87,17 @@ void fw_plan_clear(fw_plan_result *res)
     res->where = TSE_R(0.0);
     res->slide = 0;
     res->accel = false;
+    res->limit = FW_LIMIT_SLIDE_VMAX;
     res->ratio = TSE_R(0.0);
 }
 
-void fw_plan_timing(fw_plan_result *res, fw_slide_worst w, tse_real scale)
+void fw_plan_timing(fw_plan_result *res, fw_slide_worst w, tse_real scale, const fw_limits *lim)
 {
     res->reason = FW_REASON_TIMING;
     res->slide = (uint8_t)(w.slide + 1u);
     res->scissor = w.slide / 2 + 1; /* A_i and B_i are slides 2i - 1 and 2i */
     res->accel = w.accel;
+    res->limit = w.accel ? FW_LIMIT_SLIDE_AMAX : lim->vmax_by;
     res->ratio = w.ratio * scale;
 }
 
@@ -189,9 +191,11 @@ int fw_move_plan_by(fw_move *mv, const tse_geometry *g, const fw_limits *lim, co
         }
         if (round == 0) {
             /* The slides set the pace: the demand that asked for the longer stretch (k above), at
-             * the pace before it, against its limit parameter. */
+             * the pace before it, against its limit in effect. */
             const bool accel = ka > vr;
-            mv->bound = accel ? FW_BOUND_SLIDE_AMAX : FW_BOUND_SLIDE_VMAX;
+            mv->bound = accel                                      ? FW_BOUND_SLIDE_AMAX
+                        : lim->vmax_by == FW_LIMIT_STEP_GENERATOR ? FW_BOUND_STEP_GENERATOR
+                                                                   : FW_BOUND_SLIDE_VMAX;
             mv->bound_slide = (uint8_t)((accel ? val.a_slide : val.v_slide) + 1u);
             mv->bound_ratio = (accel ? ar : vr) * LIMIT_MARGIN;
         }
@@ -202,7 +206,7 @@ int fw_move_plan_by(fw_move *mv, const tse_geometry *g, const fw_limits *lim, co
     }
     /* Still too fast after every round: refuse rather than exceed a limit, naming the last
      * walk's worst slide. */
-    fw_plan_timing(res, worst, LIMIT_MARGIN);
+    fw_plan_timing(res, worst, LIMIT_MARGIN, lim);
     return -1;
 }
 

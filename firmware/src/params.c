@@ -117,13 +117,19 @@ int fw_param_value_ok(uint16_t id, int32_t value)
     return 1;
 }
 
+static fw_param_fault fault(int id, fw_param_rule rule)
+{
+    const fw_param_fault f = {id, rule};
+    return f;
+}
+
 /* The homing switches inside the stroke, and reachable all at once (see params.h). */
-static int check_switches(const fw_param_set *s, const tse_params *p)
+static fw_param_fault check_switches(const fw_param_set *s, const tse_params *p)
 {
     for (int k = 0; k < 6; ++k) {
         const int32_t sw = s->v[FP_HOME_SW_1 + k];
         if (sw < s->v[FP_S_MIN] || sw > s->v[FP_S_MAX])
-            return FP_HOME_SW_1 + k;
+            return fault(FP_HOME_SW_1 + k, FW_RULE_SWITCH_STROKE);
     }
     /* kinematics.md: a scissor's width w = sqrt(sA^2 + sB^2 + 2 cos(2 eta) sA sB) and
      * alpha = acos(w / (2 l0)); alpha <= alpha_max is w >= 2 l0 cos(alpha_max). */
@@ -134,36 +140,50 @@ static int check_switches(const fw_param_set *s, const tse_params *p)
         const tse_real b = (tse_real)s->v[FP_HOME_SW_1 + 2 * j + 1] * TSE_R(1e-6);
         const tse_real w2 = a * a + b * b + TSE_R(2.0) * c * a * b;
         if (w2 < w_lo * w_lo)
-            return FP_HOME_SW_1 + 2 * j;
+            return fault(FP_HOME_SW_1 + 2 * j, FW_RULE_SWITCH_REACH);
     }
-    return -1;
+    return fault(-1, FW_RULE_NONE);
+}
+
+fw_param_fault fw_params_judge(const fw_param_set *s)
+{
+    for (int i = 0; i < FP_COUNT; ++i)
+        if (!fw_param_value_ok((uint16_t)i, s->v[i]))
+            return fault(i, FW_RULE_RANGE);
+    tse_params p;
+    fw_params_kinematics(s, &p);
+    const tse_param_id bad = tse_params_check(&p);
+    if (bad == TSE_PARAM_ALPHA_MAX && s->v[FP_ALPHA_MAX] <= s->v[FP_ALPHA_MIN])
+        return fault(FP_ALPHA_MAX, FW_RULE_ALPHA_ORDER);
+    if (bad == TSE_PARAM_S_MAX && s->v[FP_S_MAX] <= s->v[FP_S_MIN])
+        return fault(FP_S_MAX, FW_RULE_STROKE_ORDER);
+    if (bad != TSE_PARAM_OK)
+        return fault((int)kin_param[bad], FW_RULE_GEOMETRY);
+    return check_switches(s, &p);
 }
 
 int fw_params_check(const fw_param_set *s)
 {
-    for (int i = 0; i < FP_COUNT; ++i)
-        if (!fw_param_value_ok((uint16_t)i, s->v[i]))
-            return i;
-    tse_params p;
-    fw_params_kinematics(s, &p);
-    const tse_param_id bad = tse_params_check(&p);
-    if (bad != TSE_PARAM_OK)
-        return (int)kin_param[bad];
-    return check_switches(s, &p);
+    return fw_params_judge(s).id;
 }
 
-int fw_params_set_one(fw_param_set *s, uint16_t id, int32_t value)
+int fw_params_set_one(fw_param_set *s, uint16_t id, int32_t value, fw_param_fault *why)
 {
-    if (id >= FP_COUNT)
-        return FW_REASON_PARAM_UNKNOWN;
-    if (!fw_param_value_ok(id, value))
-        return FW_REASON_PARAM_RANGE;
+    fw_param_fault f = fault(id < FP_COUNT ? (int)id : -1, FW_RULE_RANGE);
+    int r = FW_REASON_PARAM_RANGE;
     fw_param_set next = *s;
-    next.v[id] = value;
-    if (fw_params_check(&next) >= 0)
-        return FW_REASON_PARAM_SET;
-    *s = next;
-    return 0;
+    if (id >= FP_COUNT) {
+        r = FW_REASON_PARAM_UNKNOWN;
+    } else if (fw_param_value_ok(id, value)) {
+        next.v[id] = value;
+        f = fw_params_judge(&next);
+        r = f.rule == FW_RULE_NONE ? 0 : FW_REASON_PARAM_SET;
+    }
+    if (why)
+        *why = f;
+    if (r == 0)
+        *s = next;
+    return r;
 }
 
 /* CRC-32 (IEEE 802.3, reflected), bitwise: the record is small and written rarely. */

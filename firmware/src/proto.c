@@ -99,3 +99,11 @@ const char *proto_enum_name(const proto_enum_entry *table, int32_t value)
             return e->name;
     return "?";
 }
+
+const char *proto_code_words(const proto_code *table, int32_t value)
+{
+    for (const proto_code *c = table; c && c->name; ++c)
+        if (c->value == value)
+            return c->words;
+    return NULL;
+}

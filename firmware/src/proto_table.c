@@ -76,6 +76,7 @@ const proto_enum_entry proto_move_bound_names[] = {
     {FW_BOUND_PLATE_JMAX_ANGULAR, "plate_jmax_angular"},
     {FW_BOUND_SLIDE_VMAX, "slide_vmax"},
     {FW_BOUND_SLIDE_AMAX, "slide_amax"},
+    {FW_BOUND_STEP_GENERATOR, "step_generator"},
     {0, 0},
 };
 
@@ -126,12 +127,14 @@ const proto_def proto_table[PM_COUNT] = {
        "for range, the index of the offending field (0 = its first, counting in byte order); for "
        "param_unknown, param_range and param_set, the parameter id (255 for an id above 255); for "
        "state, the controller's state when it refused (a state value as in STATUS); for timing, the "
-       "slide over its limit, 1..6 for A1, B1, A2, B2, A3, B3, plus 16 when the limit is the "
-       "acceleration rather than the speed"},
+       "slide over its limit, 1..6 for A1, B1, A2, B2, A3, B3, plus 16 times the limit it is against "
+       "(slide limit codes: 0 slide_vmax, 1 slide_amax, the acceleration, 2 the step generator's speed "
+       "limit, when lower than slide_vmax)"},
       {"where", PF_U16, 6, 0, 65535, "per mille", 1.0, 0,
        "for kinematics, the position of the first failing point along the path (0..1000); for "
-       "timing, the demand against the limit, per mille of the limit (1000 = at the limit, 1350 = "
-       "35 % over; capped at 65535)"}},
+       "timing, the demand against the limit field names, per mille of that limit as in effect "
+       "(1000 = at the limit, 1350 = 35 % over; capped at 65535); for param_set, the rule the set "
+       "breaks (param_set rule codes; 0 from a controller that does not say)"}},
      "Every refused command gets one. Nothing of a refused command is applied. For order, field is the "
      "sequence number the running trajectory expects next. For ended, field is how the row's trajectory "
      "ended (a traj_end value: 0 none, no such trajectory ran; 1 done; 2 stop; 3 fault) plus 16 times "

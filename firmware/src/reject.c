@@ -14,7 +14,7 @@ void fw_reject_values(uint8_t function, uint8_t seq, fw_reason reason, uint8_t f
             where = 0;
     } else if (why && reason == FW_REASON_TIMING) {
         scissor = why->scissor;
-        fld = why->slide + (why->accel ? FW_REJECT_ACCEL : 0);
+        fld = why->slide + FW_REJECT_LIMIT * (int32_t)(why->accel ? FW_LIMIT_SLIDE_AMAX : why->limit);
         const tse_real pm = why->ratio * TSE_R(1000.0) + TSE_R(0.5);
         /* Capped to the field, a NaN included: a value out of range would not encode, and the
          * refusal would go unanswered. */
@@ -27,4 +27,12 @@ void fw_reject_values(uint8_t function, uint8_t seq, fw_reason reason, uint8_t f
     v[4] = status;
     v[5] = fld;
     v[6] = where;
+}
+
+void fw_reject_param_values(uint8_t function, fw_reason reason, uint16_t id, fw_param_rule rule,
+                            int32_t v[PROTO_MAX_FIELDS])
+{
+    fw_reject_values(function, 0, reason, (uint8_t)(id > 255 ? 255 : id), NULL, v);
+    if (reason == FW_REASON_PARAM_SET)
+        v[6] = rule;
 }

@@ -108,7 +108,7 @@ int fw_traj_push(fw_traj *t, const tse_geometry *g, const fw_limits *lim, const 
     if (last)
         fw_slide_check_finish(&chk);
     if (!fw_slide_check_ok(&chk)) {
-        fw_plan_timing(res, fw_slide_check_worst(&chk), TSE_R(1.0));
+        fw_plan_timing(res, fw_slide_check_worst(&chk), TSE_R(1.0), lim);
         return -1;
     }
 

@@ -22,12 +22,11 @@ typedef struct {
 } reading;
 
 
-/* The whole file in a NUL-terminated buffer (the caller frees it), or NULL with the reason. */
-static char *slurp(reading *r)
+char *param_file_text(const char *path, char *err, size_t errlen)
 {
-    FILE *f = fopen(r->path, "rb");
+    FILE *f = fopen(path, "rb");
     if (!f) {
-        snprintf(r->err, r->errlen, "%s: cannot open: %s", r->path, strerror(errno));
+        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
         return NULL;
     }
     char *text = malloc(MAX_BYTES + 1);
@@ -41,7 +40,7 @@ static char *slurp(reading *r)
                       : memchr(text, '\0', n) ? "contains a NUL byte: not a parameter text file (an old binary record?)"
                                               : NULL;
     if (why) {
-        snprintf(r->err, r->errlen, "%s: %s", r->path, why);
+        snprintf(err, errlen, "%s: %s", path, why);
         free(text);
         return NULL;
     }
@@ -89,15 +88,18 @@ static int take_line(reading *r, char *line, int lineno)
     return 0;
 }
 
-/* The whole set, judged as the firmware judges it. */
+/* The whole set, judged as the controller judges it (at its rates). */
 static int take_set(reading *r, const fw_param_set *before)
 {
-    const int bad = fw_params_check(&r->next);
-    if (bad < 0)
+    const fw_param_fault f = fw_params_judge_config(&r->next, FW_STEP_HZ, FW_SEGMENT_HZ);
+    if (f.rule == FW_RULE_NONE)
         return 0;
     char why[400];
-    param_explain_invalid(&r->next, why, sizeof why);
-    if (r->line[bad])
+    param_explain_fault(&r->next, f, why, sizeof why);
+    const int bad = f.id;
+    if (bad < 0)
+        snprintf(r->err, r->errlen, "%s: %s", r->path, why);
+    else if (r->line[bad])
         snprintf(r->err, r->errlen, "%s:%d: %s", r->path, r->line[bad], why);
     else
         snprintf(r->err, r->errlen, "%s: %s (%s is not set in the file: its %s is what is in conflict)", r->path,
@@ -114,7 +116,7 @@ int param_file_read(const char *path, fw_param_set *s, char *err, size_t errlen)
     r.next = *s;
     r.err = err;
     r.errlen = errlen;
-    char *text = slurp(&r);
+    char *text = param_file_text(path, err, errlen);
     if (!text)
         return -1;
     char *cur = text;

@@ -13,7 +13,9 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
+#include "fw/limits.h"
 #include "fw/params.h"
 
 typedef struct {
@@ -42,10 +44,27 @@ int param_from_text(const param_key *k, const char *text, int32_t *raw, char *er
  * that param_from_text turns back into raw.  Returns buf. */
 const char *param_to_text(const param_key *k, int32_t raw, char *buf, size_t cap);
 
-/* Explains why fw_params_check refuses set s, in words with the rule and the values in SI, e.g.
- * "alpha_min = 1.3 rad must be below alpha_max = 1.2 rad" or "home_sw_3 = 0.05 m: the six
- * homing switches cannot be reached together (...)".  For a set it accepts, says so. */
+/* Explains why the controller refuses set s (fw_params_judge_config at its rates, FW_STEP_HZ and
+ * FW_SEGMENT_HZ), in words with the rule and the values in SI, e.g. "alpha_min = 1.3 rad must be
+ * below alpha_max = 1.2 rad" or "home_sw_3 = 0.05 m: the six homing switches cannot be reached
+ * together (...)".  For a set it accepts, says so. */
 void param_explain_invalid(const fw_param_set *s, char *err, size_t errlen);
+
+/* The same for a refusal already known: rule f.rule, about parameter f.id (-1: none), in set s.
+ * A refusal's rule comes from the controller (REJECT's where), its parameter from the command:
+ * where s breaks the same rule by fw_params_judge_config the parameter that judge blames is named
+ * (a switch pair's first switch), otherwise f.id.  Never says the set is valid (rule
+ * FW_RULE_NONE says the refusal gave no rule). */
+void param_explain_fault(const fw_param_set *s, fw_param_fault f, char *err, size_t errlen);
+
+/* The slide speed limit in effect for set s at the controller's rates (fw_speed_limit_from_params)
+ * and what sets it, e.g. "slide speed limit in effect: 0.1392 m/s, set by the step generator: ...
+ * (slide_vmax = 0.15 m/s is higher)"; for a set the step generator refuses, says so. */
+const char *param_speed_limit_words(const fw_param_set *s, char *buf, size_t cap);
+
+/* Whether parameter id takes part in the slide speed limit (slide_vmax, steps_per_m,
+ * step_rate_max, dir_setup_ns). */
+int param_sets_speed_limit(int id);
 
 /* Parameter text files: `key = value` lines, '#' comments (also after a value), blank lines, CRLF,
  * an optional UTF-8 BOM; keys as param_lookup takes them; missing keys keep *s's value (start from
@@ -56,10 +75,27 @@ void param_explain_invalid(const fw_param_set *s, char *err, size_t errlen);
  * An unreadable file is "PATH: ...".  Returns 0, or -1 with *s unchanged. */
 int param_file_read(const char *path, fw_param_set *s, char *err, size_t errlen);
 
-/* Writes every parameter in SI, each after a comment with its doc, unit, range and default, to
- * PATH.tmp, fsyncs it and renames it over PATH: never a half-written file.  A set that
- * fw_params_check refuses is not written (param_file_read would refuse the file).  Returns 0, or
- * -1 with err (PATH untouched). */
+/* Writes set s to PATH through PATH.tmp, fsynced and renamed over PATH (keeping PATH's
+ * permissions): never a half-written file.
+ * - No file at PATH (or not a regular file): every parameter in SI, each after a comment with its
+ *   doc, unit, range and default (the template).
+ * - A parameter file: the user's file with only the values changed.  Every line is kept as it was
+ *   (comments, blank lines, order, line ends, a BOM, each key in the spelling and case it was
+ *   written, degrees for a _deg key) except the value of a line that reads back to another value
+ *   than s's, which is rewritten in that line's unit; the parameters the file does not set whose
+ *   value in s is not the default are appended under a comment, one 'name = value  # unit' line
+ *   each.  Reading the result gives s.  A file param_file_read refuses is not written over (its
+ *   message says why).
+ * A set that the controller refuses (param_explain_invalid) is not written (param_file_read would
+ * refuse the file).  Returns 0, or -1 with err (PATH untouched). */
 int param_file_write(const char *path, const fw_param_set *s, char *err, size_t errlen);
+
+/* One line of a parameter file for parameter id of s: "name = value   # unit" (a ratio's
+ * comment says "ratio"), in SI: what tse-sim's and tse-kin's readers take back. */
+void param_file_line(FILE *f, const fw_param_set *s, int id);
+
+/* The whole set as a parameter file, one param_file_line each, after `title` (a comment, may be
+ * NULL) and a comment with the slide speed limit in effect: what `tsectl params dump` prints. */
+void param_file_dump(FILE *f, const fw_param_set *s, const char *title);
 
 #endif

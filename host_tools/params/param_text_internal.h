@@ -15,4 +15,16 @@ const char *param_value_words(const param_key *k, int32_t raw, char *buf, size_t
  * inside its range, the four rates.  shown is the value as its writer gave it. */
 void param_range_error(const param_key *k, double raw, const char *shown, char *err, size_t errlen);
 
+/* "name = value   # unit": param_file_line's text, without the line end. */
+void param_line_text(const fw_param_set *s, int id, char *buf, size_t cap);
+
+/* The whole file at path in a NUL-terminated buffer (the caller frees it), or NULL with
+ * "PATH: why" in err: it cannot be read, is larger than 256 KiB or holds a NUL byte. */
+char *param_file_text(const char *path, char *err, size_t errlen);
+
+/* The text of the parameter file `text` with set s's values where they differ from what it says,
+ * and the parameters it lacks appended (param_file_write's promise), in a buffer the caller frees;
+ * NULL when out of memory.  `text` must read without error (param_file_read). */
+char *param_file_merged(const char *text, const fw_param_set *s);
+
 #endif

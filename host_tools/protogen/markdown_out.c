@@ -18,6 +18,13 @@ static void print_enum(FILE *out, const char *title, const proto_enum_entry *e)
         fprintf(out, "| %d | `%s` |\n", (int)e->value, e->name);
 }
 
+static void print_codes(FILE *out, const char *title, const proto_code *c)
+{
+    fprintf(out, "\n### %s\n\n| value | name | meaning |\n|---|---|---|\n", title);
+    for (; c->name; ++c)
+        fprintf(out, "| %d | `%s` | %s |\n", (int)c->value, c->name, c->words);
+}
+
 static void intro(FILE *out)
 {
     fprintf(out, "# TSE controller CAN protocol\n\n");
@@ -124,7 +131,9 @@ static void parameters(FILE *out)
                  "Set only while disabled or in a fault; each value is range-checked, then the whole set is\n"
                  "checked (kinematics.md's valid parameter sets; the homing switches inside the stroke and\n"
                  "reachable all at once; the STEP pulse and DIR set-up against the controller's step interrupt\n"
-                 "rate) before it replaces the old one, and the drivers' timing is programmed at once.\n"
+                 "rate) before it replaces the old one, and the drivers' timing is programmed at once. A set\n"
+                 "refused as a whole is answered `param_set` with the parameter set in `field` and the rule it\n"
+                 "breaks in `where` (\"param_set rule\" above).\n"
                  "`can_kbps` is only stored: the board applies it at start-up, so it takes effect after\n"
                  "`PARAM_SAVE` and a restart.\n\n"
                  "| id | name | unit | min | max | default | meaning |\n|---|---|---|---|---|---|---|\n");
@@ -143,6 +152,8 @@ int gen_markdown(FILE *out)
     fprintf(out, "\n## Enumerations\n");
     for (const proto_enum_def *d = proto_enums; d->table; ++d)
         print_enum(out, d->title, d->table);
+    for (const proto_code_def *d = proto_code_tables; d->table; ++d)
+        print_codes(out, d->title, d->table);
     state_matrix(out);
     parameters(out);
     return 0;

@@ -104,7 +104,10 @@ int main(int argc, char **argv)
             return 2;
         }
     }
-    if (table_lint(proto_table, PM_COUNT, stderr) != 0) {
+    int problems = table_lint(proto_table, PM_COUNT, stderr);
+    for (const proto_code_def *d = proto_code_tables; d->table; ++d)
+        problems += codes_lint(d->table, d->key, stderr);
+    if (problems != 0) {
         fprintf(stderr, "protogen: the message table cannot be printed as it is; nothing written\n");
         return 1;
     }

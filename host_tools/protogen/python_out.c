@@ -98,6 +98,23 @@ static void enumerations(FILE *out)
     fprintf(out, "}\n\n");
 }
 
+/* The codes a field carries for one reason, with their words (proto_code_tables). */
+static void codes(FILE *out)
+{
+    fprintf(out, "# Codes a field carries for one reason, value: (name, words): REJECT's field // 16 for timing\n"
+                 "# (slide_limit), its where for param_set (param_rule).\nCODES = {\n");
+    for (const proto_code_def *d = proto_code_tables; d->table; ++d) {
+        fprintf(out, "    \"%s\": {\n", d->key);
+        for (const proto_code *c = d->table; c->name; ++c) {
+            fprintf(out, "        %d: (\"%s\", ", (int)c->value, c->name);
+            py_str(out, c->words);
+            fprintf(out, "),\n");
+        }
+        fprintf(out, "    },\n");
+    }
+    fprintf(out, "}\n\n");
+}
+
 /* The parameters: the table's integers, and each spelling people write (param_text.h) with the
  * raw units one unit of it is. */
 static int parameters(FILE *out)
@@ -149,6 +166,7 @@ int gen_python(FILE *out)
                  "TRAJ_LAST = %u\nTRAJ_FIRST = %u\nTRAJ_WINDOW = %d\n\n",
             PROTO_NODE_BITS, PROTO_NODE_MASK, PROTO_BROADCAST, PROTO_TRAJ_LAST, PROTO_TRAJ_FIRST, PROTO_TRAJ_WINDOW);
     enumerations(out);
+    codes(out);
     if (messages(out) != 0)
         return -1;
     return parameters(out);

@@ -98,3 +98,19 @@ int table_lint(const proto_def *table, int n, FILE *err)
     }
     return problems;
 }
+
+int codes_lint(const proto_code *codes, const char *what, FILE *err)
+{
+    int problems = 0, i = 0;
+    for (const proto_code *c = codes; c->name; ++c, ++i) {
+        if (c->value != i)
+            PROBLEM("%s: code '%s' has value %d where %d is due (codes count 0, 1, 2, ... in order)", what, c->name,
+                    (int)c->value, i);
+        if (!is_ident(c->name))
+            PROBLEM("%s: code %d's name '%s' is not an identifier", what, (int)c->value, c->name);
+        if (!c->words || !c->words[0] || !is_plain(c->words))
+            PROBLEM("%s: code '%s': words are missing or hold a control character, '\"', '|' or non-ASCII", what,
+                    c->name);
+    }
+    return problems;
+}

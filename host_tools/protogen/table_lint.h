@@ -16,4 +16,8 @@
  * problems (0 when the table can be printed). */
 int table_lint(const proto_def *table, int n, FILE *err);
 
+/* The same for a table of codes (proto_code): values 0, 1, 2, ... in order, each with an
+ * identifier for a name and words that print as they are.  `what` names the table in messages. */
+int codes_lint(const proto_code *codes, const char *what, FILE *err);
+
 #endif

@@ -7,7 +7,7 @@
 
 int traj_checker_start(traj_checker *c, const fw_param_set *s, const double pose0[6], const double q0[6])
 {
-    if (fw_limits_from_params(s, TRAJ_CHECK_STEP_HZ, TRAJ_CHECK_SEGMENT_HZ, &c->g, &c->lim) != 0)
+    if (fw_limits_from_params(s, FW_STEP_HZ, FW_SEGMENT_HZ, &c->g, &c->lim) != 0)
         return -1;
     tse_real pose[6], q[6];
     for (int k = 0; k < 6; ++k) {

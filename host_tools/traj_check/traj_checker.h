@@ -10,18 +10,15 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "fw/limits.h"
 #include "fw/params.h"
 #include "fw/proto_table.h"
 #include "fw/traj.h"
 
-/* The configuration tse-sim and tse-fw run (system.md): 1 kHz control segments, 200 kHz steps. */
-#define TRAJ_CHECK_SEGMENT_HZ 1000u
-#define TRAJ_CHECK_STEP_HZ 200000u
-
 typedef struct {
     fw_traj t; /* large (the queue): keep the checker off small stacks */
     tse_geometry g;
-    fw_limits lim;
+    fw_limits lim; /* as the controller derives them at its rates (FW_STEP_HZ, FW_SEGMENT_HZ) */
 } traj_checker;
 
 /* Starts at rest at pose0 [m, rad] with slides q0 [m] under parameter set s.  Returns 0, or -1

@@ -21,6 +21,7 @@
 #include <time.h>
 
 #include "fw/controller.h"
+#include "fw/limits.h"
 #include "hal_posix/plant.h"
 #include "hal_posix/posix_hal.h"
 #include "text.h"
@@ -29,8 +30,9 @@
 #include "param_store.h"
 #include "param_text.h"
 
-#define CONTROL_HZ 1000u
-#define STEP_HZ 200000u
+/* The rates fw/limits.h promises the host tools (tsectl judges paths and sets with them). */
+#define CONTROL_HZ FW_SEGMENT_HZ
+#define STEP_HZ FW_STEP_HZ
 
 static posix_ticker ticker;
 

@@ -28,6 +28,24 @@ static void list(void)
     }
     printf("\nValues are in SI (m, rad, m/s, ratios) unless the name carries its unit (_ms, _ns, _kbps);\n"
            "angles may also be given in degrees as NAME_deg (e.g. 'params set eta_deg 30').\n");
+    fw_param_set d;
+    fw_params_default(&d);
+    char speed[512];
+    printf("\nA slide's speed is held to the lower of slide_vmax and the step generator's limit; with the\n"
+           "defaults ('tsectl params get slide_vmax' shows a controller's):\n%s\n",
+           param_speed_limit_words(&d, speed, sizeof speed));
+}
+
+/* After a value of the speed limit's parameters, the limit it gives with the controller's others,
+ * as a comment line (the output stays a parameter file). */
+static void speed_note(tlink *l, int id, int32_t raw)
+{
+    fw_param_set s;
+    if (!param_sets_speed_limit(id) || ctl_params_read(l, &s) != EXIT_OK)
+        return;
+    s.v[id] = raw;
+    char speed[512];
+    printf("# %s\n", param_speed_limit_words(&s, speed, sizeof speed));
 }
 
 /* Checks NAME and VALUE of a set before anything is sent. */
@@ -71,15 +89,21 @@ int check_params(int argc, char **argv, int *done)
     return usage_error("params", "unknown subcommand", sub);
 }
 
-/* A PARAM_SET refused for the whole set: say which rule, with the controller's other values. */
-static void explain_set(tlink *l, int id, int32_t raw)
+/* A PARAM_SET refused for the whole set: the rule the controller named, with its values and the
+ * controller's others.  From a controller that names no rule, tsectl's own judgement, if any. */
+static void explain_set(tlink *l, int id, int32_t raw, const proto_message *rej)
 {
     fw_param_set s;
     if (ctl_params_read(l, &s) != EXIT_OK)
         return;
     s.v[id] = raw;
+    fw_param_fault f = {id, (fw_param_rule)rej->v[6]};
+    if (f.rule == FW_RULE_NONE)
+        f = fw_params_judge_config(&s, FW_STEP_HZ, FW_SEGMENT_HZ);
+    if (f.rule == FW_RULE_NONE)
+        return;
     char why[512];
-    param_explain_invalid(&s, why, sizeof why);
+    param_explain_fault(&s, f, why, sizeof why);
     ctl_error("why: %s", why);
 }
 
@@ -106,12 +130,12 @@ int run_params(tlink *l, int argc, char **argv)
         const int rc = ctl_params_read(l, &s);
         if (rc != EXIT_OK)
             return rc;
-        printf("# parameters of node %u (SI units; tse-sim --params and tse-kin --params read this format)\n", l->node);
-        for (int id = 0; id < FP_COUNT; ++id) {
-            param_key k;
-            param_si_key(id, &k);
-            print_value(fw_param_table[id].name, &k, s.v[id]);
-        }
+        char title[160];
+        snprintf(title, sizeof title,
+                 "parameters of node %u (SI units, each unit in a comment; tse-sim --params and tse-kin --params "
+                 "read this file)",
+                 l->node);
+        param_file_dump(stdout, &s, title);
         return EXIT_OK;
     }
     param_key k;
@@ -119,8 +143,10 @@ int run_params(tlink *l, int argc, char **argv)
         param_lookup(argv[1], &k);
         int32_t raw;
         const int rc = ctl_param_get(l, k.id, &raw);
-        if (rc == EXIT_OK)
+        if (rc == EXIT_OK) {
             print_value(argv[1], &k, raw);
+            speed_note(l, k.id, raw);
+        }
         return rc;
     }
     int32_t raw;
@@ -138,7 +164,7 @@ int run_params(tlink *l, int argc, char **argv)
         if (rej.v[2] == FW_REASON_PARAM_SET)
             /* raw is set: parse_set returned EXIT_OK, which usage_error (in main.c, out of the
              * analyzer's sight) never returns.  NOLINTNEXTLINE(clang-analyzer-core.CallAndMessage) */
-            explain_set(l, k.id, raw);
+            explain_set(l, k.id, raw, &rej);
         return rc;
     }
     if (rc != EXIT_OK)
@@ -148,6 +174,7 @@ int run_params(tlink *l, int argc, char **argv)
     while (link_now_us() < end)
         if (link_recv(l, &m, 50) == 1 && m.msg == PM_PARAM_VALUE && m.v[0] == k.id) {
             print_value(argv[1], &k, m.v[1]);
+            speed_note(l, k.id, m.v[1]);
             return EXIT_OK;
         }
     ctl_error("no PARAM_VALUE after the set was acknowledged");

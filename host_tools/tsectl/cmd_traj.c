@@ -327,9 +327,10 @@ int run_trajectory(tlink *l, int argc, char **argv)
             row_error(path, &rows[chk.row], chk.row, &chk.why, "would be refused; nothing was sent");
             rc = EXIT_REJECTED;
         } else {
-            printf("%d rows checked against node %u's limits from where it is: slide speed up to %.0f%%, "
-                   "acceleration up to %.0f%% of the limits\n",
-                   n, l->node, chk.v_peak * 100.0, chk.a_peak * 100.0);
+            printf("%d rows checked against node %u's limits from where it is: slide speed up to %.0f%% of the "
+                   "%.4g m/s in effect (%s), acceleration up to %.0f%% of slide_amax\n",
+                   n, l->node, chk.v_peak * 100.0, chk.v_limit, proto_slide_limits[chk.v_by].name,
+                   chk.a_peak * 100.0);
             rc = stream(l, path, rows, n, seq, (int)st.v[4]);
         }
     }

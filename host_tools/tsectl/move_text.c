@@ -33,13 +33,15 @@ const char *move_info_text(const proto_message *info, char *buf, size_t cap)
     const char *plate = plate_limit(bound);
     if (plate)
         snprintf(buf, cap, "%s, paced by %s", how, plate);
-    else if (bound == FW_BOUND_SLIDE_VMAX || bound == FW_BOUND_SLIDE_AMAX)
+    else if (bound == FW_BOUND_SLIDE_VMAX || bound == FW_BOUND_SLIDE_AMAX || bound == FW_BOUND_STEP_GENERATOR)
         snprintf(buf, cap,
                  "%s, slower than asked: the slides set the pace (unstretched, slide %s (scissor %d) would need "
                  "%.2f times its %s)",
                  how, reject_slide_name(slide), (slide + 1) / 2, demand / 1000.0,
-                 bound == FW_BOUND_SLIDE_AMAX ? "acceleration limit, slide_amax"
-                                              : "speed limit, slide_vmax or the step rate where lower");
+                 bound == FW_BOUND_SLIDE_AMAX   ? "acceleration limit, slide_amax"
+                 : bound == FW_BOUND_SLIDE_VMAX ? "speed limit, slide_vmax"
+                                                : "speed limit in effect, the step generator's, lower than slide_vmax "
+                                                  "('tsectl params get slide_vmax' shows it)");
     else
         snprintf(buf, cap, "%s", how);
     return buf;

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "fw/params.h"
+#include "fw/reject.h"
 
 const char *reject_slide_name(int slide)
 {
@@ -108,21 +109,27 @@ const char *reject_text(const proto_message *r, char *buf, size_t cap)
                  cmd, scissor, proto_enum_name(proto_kin_status_names, kin), where / 10.0);
         break;
     case FW_REASON_TIMING: {
-        const int accel = (field & 16) != 0, slide = field & 15;
+        const int limit = field / FW_REJECT_LIMIT, slide = field % FW_REJECT_LIMIT;
         const double ratio = where / 1000.0;
-        if (accel)
+        const char *words = proto_code_words(proto_slide_limits, limit);
+        if (limit == FW_LIMIT_SLIDE_AMAX)
             snprintf(buf, cap,
-                     "rejected: timing: %s: slide %s (scissor %d) would need %.2f times its acceleration "
-                     "limit (slide_amax): the speed changes too abruptly here. Between points the plate "
-                     "moves at constant speed, so every change of speed at a point must be small: ease "
-                     "in and out, sample a smooth path (10-50 ms apart), and start at rest where the "
-                     "plate is",
-                     cmd, reject_slide_name(slide), scissor, ratio);
+                     "rejected: timing: %s: slide %s (scissor %d) would need %.2f times %s: the speed changes "
+                     "too abruptly here. Between points the plate moves at constant speed, so every change of "
+                     "speed at a point must be small: ease in and out, sample a smooth path (10-50 ms apart), "
+                     "and start at rest where the plate is",
+                     cmd, reject_slide_name(slide), scissor, ratio, words);
+        else if (words)
+            snprintf(buf, cap,
+                     "rejected: timing: %s: slide %s (scissor %d) would need %.2f times %s: give this point at "
+                     "least %d%% more time from the previous one",
+                     cmd, reject_slide_name(slide), scissor, ratio, words,
+                     where > 1000 ? (where - 1000 + 9) / 10 : 1);
         else
             snprintf(buf, cap,
-                     "rejected: timing: %s: slide %s (scissor %d) would need %.2f times its speed limit "
-                     "(slide_vmax): give this point at least %d%% more time from the previous one",
-                     cmd, reject_slide_name(slide), scissor, ratio, where > 1000 ? (where - 1000 + 9) / 10 : 1);
+                     "rejected: timing: %s: slide %s (scissor %d) would need %.2f times a limit this tsectl does "
+                     "not know (code %d; a firmware newer than tsectl?)",
+                     cmd, reject_slide_name(slide), scissor, ratio, limit);
         break;
     }
     case FW_REASON_STATE:
@@ -150,12 +157,18 @@ const char *reject_text(const proto_message *r, char *buf, size_t cap)
         snprintf(buf, cap, "rejected: param_range: %s is outside its range (see 'tsectl params list')",
                  field < FP_COUNT ? fw_param_table[field].name : "the parameter");
         break;
-    case FW_REASON_PARAM_SET:
-        snprintf(buf, cap,
-                 "rejected: param_set: %s: the value is in range but the whole set it gives is not valid "
-                 "(geometry, stroke, homing switches or step timing); nothing was changed",
-                 field < FP_COUNT ? fw_param_table[field].name : "the parameter");
+    case FW_REASON_PARAM_SET: {
+        const char *words = proto_code_words(proto_param_rules, where);
+        if (words)
+            snprintf(buf, cap, "rejected: param_set: %s: %s; nothing was changed",
+                     field < FP_COUNT ? fw_param_table[field].name : "the parameter", words);
+        else
+            snprintf(buf, cap,
+                     "rejected: param_set: %s: the set breaks a rule this tsectl does not know (code %d; a "
+                     "firmware newer than tsectl?); nothing was changed",
+                     field < FP_COUNT ? fw_param_table[field].name : "the parameter", where);
         break;
+    }
     case FW_REASON_STORAGE:
         snprintf(buf, cap,
                  "rejected: storage: the controller could not write its parameter store (on the board a "

@@ -2,7 +2,8 @@
  *
  * The frame carries the reason and, per reason, the first failing scissor and kinematic status
  * and path position (kinematics), the slide, the limit and how far over it (timing), the state the
- * controller was in (state), the field or parameter (range, param_*).  The text begins with the
+ * controller was in (state), the field or parameter (range, param_*) and the rule a refused set
+ * breaks (param_set); the limits' and rules' words are the message table's (proto_table.h).  The text begins with the
  * reason's wire name, so scripts can match "rejected: timing". */
 #ifndef TSECTL_REJECT_TEXT_H
 #define TSECTL_REJECT_TEXT_H

@@ -18,6 +18,8 @@ int traj_check(const fw_param_set *s, const double pose0[6], const double q0[6],
     r->row = -1;
     if (traj_checker_start(&c, s, pose0, q0) != 0)
         return -1;
+    r->v_limit = (double)c.lim.slide_vmax;
+    r->v_by = c.lim.vmax_by;
     int rc = 0;
     for (int i = 0; i < n && rc == 0; ++i) {
         if (traj_checker_push(&c, traj_dt_us(rows, i), rows[i].p, i == n - 1, r->why.v) != 0) {

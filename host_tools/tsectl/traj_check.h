@@ -5,6 +5,7 @@
 
 #include <stdint.h>
 
+#include "fw/limits.h"
 #include "fw/params.h"
 #include "fw/proto.h"
 #include "traj_file.h"
@@ -13,6 +14,8 @@ typedef struct {
     int row;            /* index of the first refused row, or -1 */
     proto_message why;  /* a REJECT as the controller would send it for that row */
     double v_peak, a_peak; /* worst slide speed and acceleration against their limits (1 = at the limit) */
+    double v_limit;        /* the slide speed limit in effect [m/s] (fw_limits_from_params) */
+    fw_slide_limit v_by;   /* and what sets it */
 } traj_check_result;
 
 /* The row's dt on the wire: differences of the rows' times in whole microseconds, so the times add

@@ -94,6 +94,31 @@ def test_rejected_carries_the_reason_scissor_status_and_path_fraction():
     assert (e.reason, e.state, e.scissor, e.status, e.fraction) == ("state", "disabled", None, None, None)
 
 
+def test_rejected_names_the_limit_and_the_rule():
+    traj = P.MESSAGES["TRAJ_COMMIT"][0]
+    e = tcan.Rejected({"function": traj, "seq": 4, "reason": 14, "scissor": 2, "kin_status": 0, "field": 4 + 32,
+                       "where": 1350})
+    assert (e.reason, e.limit, e.rule, e.scissor) == ("timing", "step_generator", None, 2)
+    assert "1.35 times its speed limit in effect, the step generator's, lower than slide_vmax" in str(e)
+    e = tcan.Rejected({"function": traj, "seq": 4, "reason": 14, "scissor": 1, "kin_status": 0, "field": 1 + 16,
+                       "where": 2000})
+    assert e.limit == "slide_amax"
+    pset = P.MESSAGES["PARAM_SET"][0]
+    e = tcan.Rejected({"function": pset, "seq": 0, "reason": 12, "scissor": 0, "kin_status": 0, "field": 31,
+                       "where": 8})
+    assert (e.reason, e.rule, e.limit) == ("param_set", "pulse_low", None)
+    assert str(e).startswith("rejected: param_set: step_pulse_ns: the STEP pulse (step_pulse_ns) must leave a low "
+                             "time at least as long as itself")
+
+
+class Recorder(pycan.Listener):
+    def __init__(self):
+        self.frames = []
+
+    def on_message_received(self, msg):
+        self.frames.append(msg)
+
+
 @pytest.fixture
 def quiet_controller():
     """A Controller on python-can's in-process virtual bus, with a listener on the same channel

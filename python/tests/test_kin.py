@@ -163,6 +163,28 @@ def test_params_keywords_and_file(tmp_path):
     assert same_bits(kin.ik(poses, params=p).q, kin.ik(poses, params=kin.Params.from_file(f)).q)
 
 
+def test_params_read_a_tsectl_dump(tmp_path):
+    """A dump of a set unlike the defaults (tsectl params dump's text, units in comments) reads
+    back to that set's kinematic values: each is the wire's micro-unit integer over 1e6."""
+    env = os.environ.get("TSE_PARAM_DUMP")
+    tool = Path(env) if env else Path(__file__).resolve().parents[2] / "build" / "host" / "python" / "tse_py_param_dump"
+    if not tool.exists():
+        pytest.fail(f"{tool} not found: build the host preset, or set TSE_PARAM_DUMP")
+    mine = tmp_path / "mine.params"
+    mine.write_text("L = 1.5\nk1 = 0.3\neta_deg = 25\nalpha_max = 1.2\ns_max = 0.8\nmu_min = 0.07\n"
+                    "slide_vmax = 0.12\ncan_kbps = 250\n")
+    dump = tmp_path / "dump.params"
+    dump.write_text(subprocess.run([str(tool), str(mine)], check=True, capture_output=True, text=True).stdout)
+    assert "L = 1.5   # m\n" in dump.read_text()
+    p = kin.Params.from_file(dump)
+    # eta_deg = 25 is 436332 urad on the wire (25 pi / 180 = 0.43633231 rad); the others are the
+    # controller's defaults (firmware/src/params.c), whose angles are whole microradians.
+    want = kin.Params(L=1.5, k1=0.3, eta=0.436332, k3=0.0186, k4=0.11765, alpha_min=0.188727, alpha_max=1.2,
+                      s_min=0, s_max=0.8, mu_min=0.07, nu_min=0.001)
+    for name, value in want.as_dict().items():
+        assert abs(p.as_dict()[name] - value) < 1e-12, name
+
+
 def test_params_against_tse_kin_params_file(tse_kin_cli, tmp_path):
     f = tmp_path / "d.params"
     f.write_text("L = 1.4\nk1 = 0.3\nalpha_max_deg = 65\nk4 = 0.1\n")

@@ -94,7 +94,8 @@ def test_move_info_says_why_a_move_is_slower_than_asked(ctl):
     info = ctl.last_move
     print(f"{planned:.3f} s planned, {info}")
     assert planned > 0.2 and info.start == "rest"
-    assert info.bound in ("slide_vmax", "slide_amax") and 1 <= info.slide <= 6 and info.demand > 1.0
+    # A speed named by the limit in effect: the step generator's, below slide_vmax at the defaults.
+    assert info.bound in ("step_generator", "slide_amax") and 1 <= info.slide <= 6 and info.demand > 1.0
     ctl.move(start, duration=2.0)
     assert ctl.last_move == tcan.MoveInfo("rest", "asked", 0, 0.0)
 
@@ -244,6 +245,11 @@ def test_estop_latches_and_clears(ctl):
     # Steps may have been lost in the abrupt stop: the zero is gone until the next homing.
     assert (st.state, st.fault, st.homed) == ("disabled", "none", False)
     assert ctl.params.set("watchdog_ms", 400) == 400  # disabled: parameters may change
+    # A 4 us STEP pulse leaves 1 us low before the next step 5 us later (200 kHz): the rule named.
+    with pytest.raises(tcan.Rejected) as e:
+        ctl.params["step_pulse_ns"] = 4000
+    assert (e.value.reason, e.value.rule) == ("param_set", "pulse_low")
+    assert str(e.value).startswith("rejected: param_set: step_pulse_ns: the STEP pulse (step_pulse_ns) must leave")
 
 
 def test_watchdog_on_a_killed_heartbeat(ctl):

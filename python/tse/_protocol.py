@@ -22,8 +22,32 @@ ENUMS = {
     "kin_status": {0: "ok", 1: "invalid", 2: "unreachable", 3: "below", 4: "alpha", 5: "stroke", 6: "singular", 7: "degenerate", 8: "noconverge"},
     "move_kind": {0: "duration", 1: "speed"},
     "move_start": {0: "rest", 1: "blended", 2: "after"},
-    "move_bound": {0: "asked", 1: "plate_vmax", 2: "plate_amax", 3: "plate_jmax", 4: "plate_wmax", 5: "plate_dwmax", 6: "plate_jmax_angular", 7: "slide_vmax", 8: "slide_amax"},
+    "move_bound": {0: "asked", 1: "plate_vmax", 2: "plate_amax", 3: "plate_jmax", 4: "plate_wmax", 5: "plate_dwmax", 6: "plate_jmax_angular", 7: "slide_vmax", 8: "slide_amax", 9: "step_generator"},
     "traj_end": {0: "none", 1: "done", 2: "stop", 3: "fault"},
+}
+
+# Codes a field carries for one reason, value: (name, words): REJECT's field // 16 for timing
+# (slide_limit), its where for param_set (param_rule).
+CODES = {
+    "slide_limit": {
+        0: ("slide_vmax", "its speed limit (slide_vmax)"),
+        1: ("slide_amax", "its acceleration limit (slide_amax)"),
+        2: ("step_generator", "its speed limit in effect, the step generator's, lower than slide_vmax: 0.9 x the steps that fit in a control segment that changes direction (after the DIR set-up, dir_setup_ns; one step per step interval, at most step_rate_max a second) / steps_per_m ('tsectl params get slide_vmax' shows it)"),
+    },
+    "param_rule": {
+        0: ("unspecified", "the value is in range but the whole set it gives is not valid (geometry, stroke, homing switches or step timing)"),
+        1: ("range", "a value of the set is outside its range"),
+        2: ("geometry", "the geometry it gives breaks a rule of a valid parameter set (docs/kinematics.md)"),
+        3: ("alpha_order", "alpha_min must be below alpha_max"),
+        4: ("stroke_order", "s_min must be below s_max"),
+        5: ("switch_stroke", "every homing switch (home_sw_1..6) must be within the stroke s_min..s_max"),
+        6: ("switch_reach", "the six homing switches must be reachable together: with both slides of a scissor at their switches the scissor must be at least 2 l0 cos(alpha_max) wide, or its alpha_max stop halts them first"),
+        7: ("pulse_period", "the STEP pulse (step_pulse_ns) must end within one step interrupt period of the controller"),
+        8: ("pulse_low", "the STEP pulse (step_pulse_ns) must leave a low time at least as long as itself before the same slide's next step, one step interval (1 / step_rate_max, in whole step interrupts) later"),
+        9: ("dir_setup_room", "the DIR set-up (dir_setup_ns, in whole step interrupts, plus one) must leave room for a step in a control segment that changes direction"),
+        10: ("config", "the controller's step interrupt and control segment rates cannot run any set (a firmware configuration fault)"),
+        11: ("not_at_rest", "the step generator was still running: parameters change only at rest (try again)"),
+    },
 }
 
 # name: (function code, direction, length, fields); a field is
@@ -49,9 +73,9 @@ MESSAGES = {
         ("kin_status", "u8", 4, 0, 8, "", 1.0, "kin_status",
          "for kinematics, the kinematic status of the first failing point; 0 otherwise"),
         ("field", "u8", 5, 0, 255, "", 1.0, None,
-         "for range, the index of the offending field (0 = its first, counting in byte order); for param_unknown, param_range and param_set, the parameter id (255 for an id above 255); for state, the controller's state when it refused (a state value as in STATUS); for timing, the slide over its limit, 1..6 for A1, B1, A2, B2, A3, B3, plus 16 when the limit is the acceleration rather than the speed"),
+         "for range, the index of the offending field (0 = its first, counting in byte order); for param_unknown, param_range and param_set, the parameter id (255 for an id above 255); for state, the controller's state when it refused (a state value as in STATUS); for timing, the slide over its limit, 1..6 for A1, B1, A2, B2, A3, B3, plus 16 times the limit it is against (slide limit codes: 0 slide_vmax, 1 slide_amax, the acceleration, 2 the step generator's speed limit, when lower than slide_vmax)"),
         ("where", "u16", 6, 0, 65535, "per mille", 1.0, None,
-         "for kinematics, the position of the first failing point along the path (0..1000); for timing, the demand against the limit, per mille of the limit (1000 = at the limit, 1350 = 35 % over; capped at 65535)"),
+         "for kinematics, the position of the first failing point along the path (0..1000); for timing, the demand against the limit field names, per mille of that limit as in effect (1000 = at the limit, 1350 = 35 % over; capped at 65535); for param_set, the rule the set breaks (param_set rule codes; 0 from a controller that does not say)"),
     ), "Every refused command gets one. Nothing of a refused command is applied. For order, field is the sequence number the running trajectory expects next. For ended, field is how the row's trajectory ended (a traj_end value: 0 none, no such trajectory ran; 1 done; 2 stop; 3 fault) plus 16 times the fault that ended it (as in STATUS), and where is how long before this row came it ended, in ms (capped at 65535): for an underrun, how late the host was with the row the controller lacked."),
     "ACK": (0x04, "to_host", 8, (
         ("function", "u8", 0, 0, 127, "", 1.0, None,
@@ -204,7 +228,7 @@ MESSAGES = {
          "the accepted MOVE_COMMIT's sequence number"),
         ("start", "u8", 1, 0, 2, "", 1.0, "move_start",
          "how it starts: from rest, blended into the running move's deceleration, or after it (back to back, where a blend would break a limit)"),
-        ("bound", "u8", 2, 0, 8, "", 1.0, "move_bound",
+        ("bound", "u8", 2, 0, 9, "", 1.0, "move_bound",
          "what set its pace: the duration or speed asked, a plate limit, or a slide limit that stretched it (slide_vmax also where the step rate is the lower limit)"),
         ("slide", "u8", 3, 0, 6, "", 1.0, None,
          "for slide_vmax and slide_amax, the slide 1..6 (A1, B1, A2, B2, A3, B3); 0 otherwise"),

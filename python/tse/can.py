@@ -132,8 +132,9 @@ the latest STATUS."""
 
 MoveInfo = namedtuple("MoveInfo", "start bound slide demand")
 MoveInfo.__doc__ = """How an accepted move starts ("rest", "blended" into the running move, or "after" it)
-and what set its pace ("asked", a plate limit's name such as "plate_vmax", or "slide_vmax" and
-"slide_amax" with the slide 1..6 (A1, B1, A2, B2, A3, B3) and what it would have needed without the
+and what set its pace ("asked", a plate limit's name such as "plate_vmax", or "slide_vmax",
+"step_generator" (the slide speed limit in effect when lower than slide_vmax) and "slide_amax" with
+the slide 1..6 (A1, B1, A2, B2, A3, B3) and what it would have needed without the
 stretch over its limit, 1.14 = 14 % over; slide 0 and demand 0 otherwise): the controller's
 MOVE_INFO, kept as Controller.last_move."""
 
@@ -197,6 +198,11 @@ class Rejected(TseError):
     status    the kinematic status of the first failing point ("unreachable", ...), else None
     fraction  where along the path the first failing point is, 0..1 (kinematics), else None
     state     the controller's state when it refused (reason "state"), else None
+    limit     the limit a timing refusal is against ("slide_vmax", "slide_amax", or "step_generator"
+              when the step generator's speed limit is below slide_vmax: _protocol.CODES["slide_limit"]),
+              else None
+    rule      the rule a refused parameter set breaks ("alpha_order", "pulse_low", ...:
+              _protocol.CODES["param_rule"]; "unspecified" from an older controller), else None
     row       the trajectory row (0-based) that was refused (trajectory only), else None
     raw       the REJECT's fields
     str(e) is tsectl's wording: "rejected: REASON: ...".
@@ -211,6 +217,11 @@ class Rejected(TseError):
         self.status = _enum("kin_status", raw["kin_status"]) if kin else None
         self.fraction = raw["where"] / 1000.0 if kin else None
         self.state = _enum("state", raw["field"]) if self.reason == "state" else None
+        self.limit = self.rule = None
+        if self.reason == "timing":
+            self.limit = _P.CODES["slide_limit"].get(raw["field"] // 16, (str(raw["field"] // 16),))[0]
+        if self.reason == "param_set":
+            self.rule = _P.CODES["param_rule"].get(raw["where"], (str(raw["where"]),))[0]
         self.row = row
         self.words = reject_words(raw)
         super().__init__(prefix + self.words)
@@ -286,16 +297,21 @@ def reject_words(raw):
                 f"{where / 10.0:.1f}% of the path (the pose, or the path to it, leaves the workspace "
                 f"with its margins; 'tse-kin ik' shows the pose's status)")
     if rn == "timing":
-        slide = _SLIDES[(field & 15) - 1] if 1 <= (field & 15) <= 6 else "?"
+        limit, slide = divmod(field, 16)  # the slide, plus 16 times the limit (CODES["slide_limit"])
+        slide = _SLIDES[slide - 1] if 1 <= slide <= 6 else "?"
         ratio = f"{where / 1000.0:.2f}"
-        if field & 16:
-            return (f"rejected: timing: {cmd}: slide {slide} (scissor {scissor}) would need {ratio} times its "
-                    "acceleration limit (slide_amax): the speed changes too abruptly here. Between points the "
-                    "plate moves at constant speed, so every change of speed at a point must be small: ease in "
-                    "and out, sample a smooth path (10-50 ms apart), and start at rest where the plate is")
+        name, words = _P.CODES["slide_limit"].get(limit, (None, None))
+        if name == "slide_amax":
+            return (f"rejected: timing: {cmd}: slide {slide} (scissor {scissor}) would need {ratio} times {words}: "
+                    "the speed changes too abruptly here. Between points the plate moves at constant speed, so "
+                    "every change of speed at a point must be small: ease in and out, sample a smooth path "
+                    "(10-50 ms apart), and start at rest where the plate is")
+        if words is None:
+            return (f"rejected: timing: {cmd}: slide {slide} (scissor {scissor}) would need {ratio} times a limit "
+                    f"this tsectl does not know (code {limit}; a firmware newer than tsectl?)")
         more = (where - 1000 + 9) // 10 if where > 1000 else 1
-        return (f"rejected: timing: {cmd}: slide {slide} (scissor {scissor}) would need {ratio} times its speed "
-                f"limit (slide_vmax): give this point at least {more}% more time from the previous one")
+        return (f"rejected: timing: {cmd}: slide {slide} (scissor {scissor}) would need {ratio} times {words}: "
+                f"give this point at least {more}% more time from the previous one")
     if rn == "state":
         return (f"rejected: state: {cmd} is not taken while the controller is {_enum('state', field)}: "
                 f"{_state_advice(function, _enum('state', field))}")
@@ -313,8 +329,11 @@ def reject_words(raw):
         return (f"rejected: param_range: {_param_name(field) or 'the parameter'} is outside its range "
                 "(see 'tsectl params list')")
     if rn == "param_set":
-        return (f"rejected: param_set: {_param_name(field) or 'the parameter'}: the value is in range but the whole "
-                "set it gives is not valid (geometry, stroke, homing switches or step timing); nothing was changed")
+        _name, words = _P.CODES["param_rule"].get(where, (None, None))
+        if words is None:
+            return (f"rejected: param_set: {_param_name(field) or 'the parameter'}: the set breaks a rule this "
+                    f"tsectl does not know (code {where}; a firmware newer than tsectl?); nothing was changed")
+        return f"rejected: param_set: {_param_name(field) or 'the parameter'}: {words}; nothing was changed"
     if rn == "storage":
         return ("rejected: storage: the controller could not write its parameter store (on the board a flash "
                 "erase or write failed; in tse-sim, no --params FILE or the file could not be written): nothing "

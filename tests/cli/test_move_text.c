@@ -40,7 +40,11 @@ static void move_words(void **state)
     has(t, ", blended into the running move, slower than asked: ");
     has(t, "the slides set the pace (unstretched, slide B2 (scissor 2) would need 1.14 times its acceleration limit, "
            "slide_amax)");
-    has(words(FW_START_REST, FW_BOUND_SLIDE_VMAX, 5, 2500), "slide A3 (scissor 3) would need 2.50 times its speed limit");
+    has(words(FW_START_REST, FW_BOUND_SLIDE_VMAX, 5, 2500),
+        "slide A3 (scissor 3) would need 2.50 times its speed limit, slide_vmax)");
+    has(words(FW_START_REST, FW_BOUND_STEP_GENERATOR, 2, 1200),
+        "slide B1 (scissor 1) would need 1.20 times its speed limit in effect, the step generator's, lower than "
+        "slide_vmax ('tsectl params get slide_vmax' shows it))");
 }
 
 int main(void)

@@ -16,6 +16,7 @@
 #include <cmocka.h>
 
 #include "param_text.h"
+#include "params_file.h"
 #include "scratch_dir.h"
 
 #define PI 3.14159265358979323846
@@ -304,6 +305,96 @@ static void test_explain(void **state)
     assert_contains(err, "scissor 3");
 }
 
+/* Each rule the controller's rates add, worded with the values that decide it (200 kHz step
+ * interrupts: 5 us; 1 kHz segments: 200 ticks), and each rule named by a refusal: never "valid". */
+static void test_explain_timing(void **state)
+{
+    (void)state;
+    fw_param_set s;
+    fw_params_default(&s);
+    s.v[FP_STEP_PULSE_NS] = 6000;
+    explained(&s, "step_pulse_ns = 6000 ns does not end within one step interrupt period, 5000 ns at 200 kHz: it "
+                  "must be shorter (at most 4999 ns)");
+    /* The case: 4 us high leaves 1 us low before a step one tick later. */
+    s.v[FP_STEP_PULSE_NS] = 4000;
+    explained(&s, "step_pulse_ns = 4000 ns leaves 1000 ns low before the same slide's next step, which may come "
+                  "5000 ns later (1 step interrupt at 200 kHz for step_rate_max = 200000 1/s): the low time must "
+                  "be at least as long as the pulse (at most 2500 ns)");
+    /* A step every 3 ticks at 70k/s (200k / 70k = 2.86, rounded up): 15 us apart, room for the
+     * longest pulse that ends within its tick. */
+    s.v[FP_STEP_RATE_MAX] = 70000;
+    s.v[FP_STEP_PULSE_NS] = 4999;
+    explained(&s, "the set is valid");
+    s.v[FP_STEP_RATE_MAX] = 200000;
+    s.v[FP_STEP_PULSE_NS] = 2501;
+    explained(&s, "step_pulse_ns = 2501 ns leaves 2499 ns low before the same slide's next step, which may come "
+                  "5000 ns later (1 step interrupt at 200 kHz for step_rate_max = 200000 1/s): the low time must "
+                  "be at least as long as the pulse (at most 2500 ns)");
+    fw_params_default(&s);
+    /* 0.995 ms is 199 ticks + 1 of the 200: none left for a step; 0.99 ms (198 + 1) the longest. */
+    s.v[FP_DIR_SETUP_NS] = 995000;
+    explained(&s, "dir_setup_ns = 995000 ns takes 200 step interrupts (rounded up, plus one) of the 200 in a "
+                  "control segment, leaving no room for a step (1 interrupt apart for step_rate_max = 200000 1/s) "
+                  "in a segment that changes direction (at most 990000 ns)");
+    s.v[FP_DIR_SETUP_NS] = 990000;
+    explained(&s, "the set is valid");
+
+    /* A refusal's rule, whatever tsectl's own judgement: the rule is the controller's. */
+    fw_params_default(&s);
+    const fw_param_fault rest = {FP_SLIDE_VMAX, FW_RULE_NOT_AT_REST};
+    char err[512];
+    param_explain_fault(&s, rest, err, sizeof err);
+    assert_string_equal(err, "the slides were still moving when the set came: set it again at rest");
+    const fw_param_fault config = {-1, FW_RULE_CONFIG};
+    param_explain_fault(&s, config, err, sizeof err);
+    assert_string_equal(err, "the controller's rates (200000 Hz step interrupts, 1000 Hz control segments) cannot run it");
+    /* From a controller that names no rule: its generic words. */
+    const fw_param_fault none = {FP_L, FW_RULE_NONE};
+    param_explain_fault(&s, none, err, sizeof err);
+    assert_string_equal(err, "the value is in range but the whole set it gives is not valid (geometry, stroke, homing "
+                             "switches or step timing)");
+    /* A switch pair broken by setting its second switch: the judge's blame, the pair's first. */
+    s.v[FP_HOME_SW_1] = 183500;
+    s.v[FP_HOME_SW_2] = 183500;
+    const fw_param_fault reach = {FP_HOME_SW_2, FW_RULE_SWITCH_REACH};
+    param_explain_fault(&s, reach, err, sizeof err);
+    assert_contains(err, "home_sw_1 = 0.1835 m: the six homing switches cannot be reached together (slides 1 and 2");
+    /* Every rule, on a set the local judge finds valid: words, never "valid". */
+    fw_params_default(&s);
+    for (int r = 0; r <= FW_RULE_COUNT; ++r) {
+        const fw_param_fault f = {FP_SLIDE_VMAX, (fw_param_rule)r};
+        param_explain_fault(&s, f, err, sizeof err);
+        if (!err[0] || strstr(err, "valid") == err || strstr(err, "is valid"))
+            fail_msg("rule %d: '%s'", r, err);
+    }
+}
+
+/* The slide speed limit in effect, by hand: at 200 kHz a segment that changes direction has 200
+ * ticks less 1 + 1 of DIR set-up for 5 us: 198 steps, 0.9 x 198000 / 1.28M = 0.13921875 m/s. */
+static void test_speed_words(void **state)
+{
+    (void)state;
+    fw_param_set s;
+    fw_params_default(&s);
+    char b[512];
+    assert_string_equal(param_speed_limit_words(&s, b, sizeof b),
+                        "slide speed limit in effect: 0.1392 m/s, set by the step generator: 0.9 x 198 steps per 1 ms "
+                        "control segment / steps_per_m = 1280000 1/m, 198 being the steps that fit in a segment that "
+                        "changes direction (200 step interrupts at 200 kHz, less 2 for the DIR set-up of dir_setup_ns "
+                        "= 5000 ns, one step every 1 for step_rate_max = 200000 1/s); slide_vmax = 0.15 m/s is higher");
+    s.v[FP_SLIDE_VMAX] = 120000;
+    assert_string_equal(param_speed_limit_words(&s, b, sizeof b),
+                        "slide speed limit in effect: 0.12 m/s, slide_vmax (the step generator would allow 0.1392 m/s)");
+    /* 60k/s: a step every 4 ticks (200k / 60k = 3.33), (200 - 2) / 4 = 49 steps, 0.9 x 49000 / 1.28M. */
+    s.v[FP_STEP_RATE_MAX] = 60000;
+    assert_contains(param_speed_limit_words(&s, b, sizeof b), "in effect: 0.03445 m/s, set by the step generator: 0.9 x 49 steps");
+    assert_contains(b, "one step every 4 for step_rate_max = 60000 1/s");
+    assert_true(fabs(0.9 * 49000 / 1280000.0 - 0.0344531) < 1e-6);
+    for (int id = 0; id < FP_COUNT; ++id)
+        assert_int_equal(param_sets_speed_limit(id), id == FP_SLIDE_VMAX || id == FP_STEPS_PER_M ||
+                                                          id == FP_STEP_RATE_MAX || id == FP_DIR_SETUP_NS);
+}
+
 /* A valid set unlike the defaults in every family, to read files into. */
 static void changed_set(fw_param_set *s)
 {
@@ -358,6 +449,135 @@ static void test_file_round_trip(void **state)
     assert_int_equal(param_file_read(p, &s, err, sizeof err), 0);
     assert_memory_equal(&s, &changed, sizeof s);
     assert_contains(get_file(p, &n), "\nslide_vmax = 0.123457\n");
+}
+
+/* `tsectl params dump` of a set unlike the defaults reads back to the same set through tse-sim's
+ * reader (param_file_read) and, for the kinematic keys, tse-kin's (kin_params_load, which tse.kin
+ * uses too), each value within half a micro-unit of the wire integer; the units are comments. */
+static void test_dump_round_trip(void **state)
+{
+    (void)state;
+    fw_param_set c, back;
+    changed_set(&c);
+    const char *p = scratch_path("dump.params");
+    FILE *f = fopen(p, "w");
+    assert_non_null(f);
+    param_file_dump(f, &c, "parameters of node 1");
+    assert_int_equal(fclose(f), 0);
+    size_t n;
+    const char *text = get_file(p, &n);
+    assert_true(!strncmp(text, "# parameters of node 1\n# slide speed limit in effect: 0.123457 m/s, slide_vmax (the "
+                               "step generator would allow 0.1392 m/s)\nL = 1.800001   # m\n", 142));
+    assert_contains(text, "\nL = 1.800001   # m\n");
+    assert_contains(text, "\nk1 = 0.250001   # ratio\n");
+    assert_contains(text, "\nslide_vmax = 0.123457   # m/s\n");
+    assert_contains(text, "\ncan_kbps = 250   # kbit/s\n");
+
+    char err[512] = "";
+    fw_params_default(&back);
+    if (param_file_read(p, &back, err, sizeof err) != 0)
+        fail_msg("tse-sim's reader refused the dump: %s", err);
+    assert_memory_equal(&back, &c, sizeof c);
+
+    kin_param_values kv;
+    kin_params_default(&kv);
+    if (kin_params_load(p, &kv, err, sizeof err) != KIN_PARAMS_OK)
+        fail_msg("tse-kin's reader refused the dump: %s", err);
+    static const struct {
+        tse_param_id kin;
+        int fw;
+    } pairs[] = {{TSE_PARAM_L, FP_L},         {TSE_PARAM_K1, FP_K1},       {TSE_PARAM_ETA, FP_ETA},
+                 {TSE_PARAM_K3, FP_K3},       {TSE_PARAM_K4, FP_K4},       {TSE_PARAM_ALPHA_MIN, FP_ALPHA_MIN},
+                 {TSE_PARAM_ALPHA_MAX, FP_ALPHA_MAX}, {TSE_PARAM_S_MIN, FP_S_MIN}, {TSE_PARAM_S_MAX, FP_S_MAX},
+                 {TSE_PARAM_MU_MIN, FP_MU_MIN}, {TSE_PARAM_NU_MIN, FP_NU_MIN}};
+    for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; ++i)
+        if (fabs(kv.v[pairs[i].kin] * 1e6 - c.v[pairs[i].fw]) > 1e-6)
+            fail_msg("%s: tse-kin read %.17g, the set has %d micro-units", fw_param_table[pairs[i].fw].name,
+                     kv.v[pairs[i].kin], c.v[pairs[i].fw]);
+}
+
+/* Saving into a user's file keeps every line the user wrote and changes only values; what the
+ * file does not set (and differs from the default) is appended; reading it back gives the set. */
+static void saved_into(const char *before, size_t before_len, const fw_param_set *s, const char *want)
+{
+    char p[512];
+    snprintf(p, sizeof p, "%s", scratch_path("user.params"));
+    put_file(p, before, before_len);
+    assert_int_equal(chmod(p, 0640), 0);
+    char err[512] = "";
+    if (param_file_write(p, s, err, sizeof err) != 0)
+        fail_msg("not written: %s", err);
+    size_t n;
+    const char *after = get_file(p, &n);
+    assert_int_equal(n, strlen(want));
+    assert_string_equal(after, want);
+    struct stat st;
+    assert_int_equal(stat(p, &st), 0);
+    assert_int_equal(st.st_mode & 07777, 0640);
+    assert_int_equal(access(scratch_path("user.params.tmp"), F_OK), -1);
+    fw_param_set back;
+    fw_params_default(&back);
+    if (param_file_read(p, &back, err, sizeof err) != 0)
+        fail_msg("the saved file does not read: %s", err);
+    assert_memory_equal(&back, s, sizeof back);
+}
+
+static void test_save_keeps_user_file(void **state)
+{
+    (void)state;
+    fw_param_set s;
+    fw_params_default(&s);
+    s.v[FP_WATCHDOG_MS] = 250;
+    s.v[FP_SLIDE_VMAX] = 120000;
+    s.v[FP_ETA] = 436332; /* 25 deg: 25 pi / 180 = 0.4363323 rad */
+    s.v[FP_PLATE_VMAX] = 250000;
+    /* Comments, a blank line, a key in capitals in degrees, no blanks around '=', no last newline. */
+    static const char mine[] = "# my robot, as built\n"
+                               "L = 1.727   # as built\n"
+                               "\n"
+                               "ETA_DEG = 30   # thirty degrees\n"
+                               "slide_vmax=0.14\n"
+                               "watchdog_ms = 250 # slower host";
+    saved_into(mine, sizeof mine - 1, &s,
+               "# my robot, as built\n"
+               "L = 1.727   # as built\n"
+               "\n"
+               "ETA_DEG = 25   # thirty degrees\n"
+               "slide_vmax=0.12\n"
+               "watchdog_ms = 250 # slower host\n"
+               "\n"
+               "# Saved by the controller (PARAM_SAVE): values this file did not set\n"
+               "plate_vmax = 0.25   # m/s\n");
+    /* A BOM and CRLF line ends stay, and what is appended ends its lines the same way. */
+    fw_params_default(&s);
+    s.v[FP_SLIDE_VMAX] = 140000;
+    s.v[FP_CAN_KBPS] = 250;
+    static const char crlf[] = "\xEF\xBB\xBF# mine\r\nslide_vmax = 0.140 \r\n";
+    saved_into(crlf, sizeof crlf - 1, &s,
+               "\xEF\xBB\xBF# mine\r\nslide_vmax = 0.140 \r\n\r\n"
+               "# Saved by the controller (PARAM_SAVE): values this file did not set\r\n"
+               "can_kbps = 250   # kbit/s\r\n");
+    /* Nothing differs: the file comes back byte for byte (0.140 is 0.14: not rewritten). */
+    static const char same[] = "# same\nslide_vmax = 0.140\ncan_kbps=250\n";
+    saved_into(same, sizeof same - 1, &s, same);
+    /* An empty file takes what differs from the defaults, under the comment alone. */
+    saved_into("", 0, &s,
+               "# Saved by the controller (PARAM_SAVE): values this file did not set\n"
+               "slide_vmax = 0.14   # m/s\n"
+               "can_kbps = 250   # kbit/s\n");
+
+    /* A file that no longer reads is not written over. */
+    char p[512];
+    snprintf(p, sizeof p, "%s", scratch_path("user.params"));
+    static const char broken[] = "# mine\nslide_vmax = fast\n";
+    put_file(p, broken, sizeof broken - 1);
+    char err[512] = "";
+    assert_int_equal(param_file_write(p, &s, err, sizeof err), -1);
+    assert_contains(err, "which does not read as a parameter file now: ");
+    assert_contains(err, "user.params:2: slide_vmax: 'fast' is not one finite number (in m/s)");
+    size_t n;
+    assert_string_equal(get_file(p, &n), broken);
+    assert_int_equal(access(scratch_path("user.params.tmp"), F_OK), -1);
 }
 
 static void read_ok(const char *text, fw_param_set *s)
@@ -513,7 +733,9 @@ int main(void)
         cmocka_unit_test(test_lookup),        cmocka_unit_test(test_si_units),
         cmocka_unit_test(test_from_text),     cmocka_unit_test(test_refused_values),
         cmocka_unit_test(test_to_text),       cmocka_unit_test(test_explain),
+        cmocka_unit_test(test_explain_timing), cmocka_unit_test(test_speed_words),
         cmocka_unit_test(test_file_round_trip), cmocka_unit_test(test_file_spellings),
+        cmocka_unit_test(test_dump_round_trip), cmocka_unit_test(test_save_keeps_user_file),
         cmocka_unit_test(test_file_errors),   cmocka_unit_test(test_write_errors),
     };
     return cmocka_run_group_tests(tests, scratch_dir_make, scratch_dir_remove);

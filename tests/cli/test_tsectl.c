@@ -74,6 +74,73 @@ static void reject_words(void **state)
     has(b, "nothing was saved");
 }
 
+/* Each rule a refused parameter set names, in one wording each; a code tsectl does not know is
+ * said to be one, never read as another. */
+static void param_set_rule_words(void **state)
+{
+    (void)state;
+    static const char *const want[] = {
+        [FW_RULE_NONE] = "the value is in range but the whole set it gives is not valid (geometry, stroke, homing "
+                         "switches or step timing)",
+        [FW_RULE_RANGE] = "a value of the set is outside its range",
+        [FW_RULE_GEOMETRY] = "the geometry it gives breaks a rule of a valid parameter set (docs/kinematics.md)",
+        [FW_RULE_ALPHA_ORDER] = "alpha_min must be below alpha_max",
+        [FW_RULE_STROKE_ORDER] = "s_min must be below s_max",
+        [FW_RULE_SWITCH_STROKE] = "every homing switch (home_sw_1..6) must be within the stroke s_min..s_max",
+        [FW_RULE_SWITCH_REACH] = "the six homing switches must be reachable together: with both slides of a scissor "
+                                 "at their switches the scissor must be at least 2 l0 cos(alpha_max) wide, or its "
+                                 "alpha_max stop halts them first",
+        [FW_RULE_PULSE_PERIOD] = "the STEP pulse (step_pulse_ns) must end within one step interrupt period of the "
+                                 "controller",
+        [FW_RULE_PULSE_LOW] = "the STEP pulse (step_pulse_ns) must leave a low time at least as long as itself before "
+                              "the same slide's next step, one step interval (1 / step_rate_max, in whole step "
+                              "interrupts) later",
+        [FW_RULE_DIR_SETUP_ROOM] = "the DIR set-up (dir_setup_ns, in whole step interrupts, plus one) must leave room "
+                                   "for a step in a control segment that changes direction",
+        [FW_RULE_CONFIG] = "the controller's step interrupt and control segment rates cannot run any set (a firmware "
+                           "configuration fault)",
+        [FW_RULE_NOT_AT_REST] = "the step generator was still running: parameters change only at rest (try again)",
+    };
+    assert_int_equal(sizeof want / sizeof want[0], FW_RULE_COUNT);
+    const int set = proto_table[PM_PARAM_SET].function;
+    char b[512], expect[512];
+    for (int r = 0; r < FW_RULE_COUNT; ++r) {
+        proto_message m = reject(set, FW_REASON_PARAM_SET, 0, 0, FP_STEP_PULSE_NS, r);
+        snprintf(expect, sizeof expect, "rejected: param_set: step_pulse_ns: %s; nothing was changed", want[r]);
+        assert_string_equal(reject_text(&m, b, sizeof b), expect);
+    }
+    proto_message m = reject(set, FW_REASON_PARAM_SET, 0, 0, FP_DIR_SETUP_NS, FW_RULE_COUNT);
+    assert_string_equal(reject_text(&m, b, sizeof b),
+                        "rejected: param_set: dir_setup_ns: the set breaks a rule this tsectl does not know (code 12; "
+                        "a firmware newer than tsectl?); nothing was changed");
+}
+
+/* A timing refusal names the limit in effect: slide_vmax, or the step generator's when lower. */
+static void timing_limit_words(void **state)
+{
+    (void)state;
+    char b[1024];
+    const int traj = proto_table[PM_TRAJ_COMMIT].function;
+    proto_message m = reject(traj, FW_REASON_TIMING, 2, 0, 4, 1350);
+    assert_string_equal(reject_text(&m, b, sizeof b),
+                        "rejected: timing: TRAJ_COMMIT: slide B2 (scissor 2) would need 1.35 times its speed limit "
+                        "(slide_vmax): give this point at least 35% more time from the previous one");
+    m = reject(traj, FW_REASON_TIMING, 2, 0, 4 + 32, 1350);
+    assert_string_equal(reject_text(&m, b, sizeof b),
+                        "rejected: timing: TRAJ_COMMIT: slide B2 (scissor 2) would need 1.35 times its speed limit in "
+                        "effect, the step generator's, lower than slide_vmax: 0.9 x the steps that fit in a control "
+                        "segment that changes direction (after the DIR set-up, dir_setup_ns; one step per step "
+                        "interval, at most step_rate_max a second) / steps_per_m ('tsectl params get slide_vmax' "
+                        "shows it): give this point at least 35% more time from the previous one");
+    m = reject(traj, FW_REASON_TIMING, 3, 0, 6 + 16, 2000);
+    reject_text(&m, b, sizeof b);
+    has(b, "slide B3 (scissor 3) would need 2.00 times its acceleration limit (slide_amax): the speed changes");
+    m = reject(traj, FW_REASON_TIMING, 1, 0, 1 + 48, 1200);
+    assert_string_equal(reject_text(&m, b, sizeof b),
+                        "rejected: timing: TRAJ_COMMIT: slide A1 (scissor 1) would need 1.20 times a limit this "
+                        "tsectl does not know (code 3; a firmware newer than tsectl?)");
+}
+
 /* In a log, progress is a handful of plain lines, never carriage returns. */
 static void progress_in_a_log(void **state)
 {
@@ -153,8 +220,8 @@ static void check_speed_jump_is_acceleration(void **state)
     assert_int_equal(traj_check(&defaults, pose0, q0, rows, 2, &r), 1);
     assert_int_equal(r.row, 0);
     assert_int_equal(r.why.v[2], FW_REASON_TIMING);
-    assert_true(r.why.v[5] & 16);
-    assert_true((r.why.v[5] & 15) >= 1 && (r.why.v[5] & 15) <= 6);
+    assert_int_equal(r.why.v[5] / 16, FW_LIMIT_SLIDE_AMAX);
+    assert_true((r.why.v[5] % 16) >= 1 && (r.why.v[5] % 16) <= 6);
     assert_true(r.why.v[6] > 1000);
 }
 
@@ -172,13 +239,28 @@ static void check_speed_limit(void **state)
     }
     traj_check_result r;
     assert_int_equal(traj_check(&defaults, pose0, q0, rows, N, &r), 0);
+    /* Checked against the limit in effect: the step generator's 0.9 x 198 steps per 1 ms at
+     * 1.28M steps/m, 0.13921875 m/s, not slide_vmax's 0.15. */
+    assert_true(fabs(r.v_limit - 0.13921875) < 1e-12);
+    assert_int_equal(r.v_by, FW_LIMIT_STEP_GENERATOR);
     fw_param_set slow = defaults;
     slow.v[FP_SLIDE_VMAX] = 1000; /* 1 mm/s */
     assert_int_equal(traj_check(&slow, pose0, q0, rows, N, &r), 1);
     assert_int_equal(r.why.v[2], FW_REASON_TIMING);
-    assert_int_equal(r.why.v[5] & 16, 0);
+    assert_int_equal(r.why.v[5] / 16, FW_LIMIT_SLIDE_VMAX);
     assert_true(r.why.v[6] > 1000);
     assert_true(r.row > 0 && r.row < N / 2); /* refused on the way up, where the speed first exceeds it */
+    assert_true(fabs(r.v_limit - 0.001) < 1e-12);
+    /* 10M steps/m: the step generator allows 0.9 x 198000 / 1e7 = 17.82 mm/s, under slide_vmax's
+     * 150 and the path's 47 mm/s: refused, naming the step generator, per mille of 17.82 mm/s. */
+    fw_param_set fine = defaults;
+    fine.v[FP_STEPS_PER_M] = 10000000;
+    assert_int_equal(traj_check(&fine, pose0, q0, rows, N, &r), 1);
+    assert_int_equal(r.why.v[2], FW_REASON_TIMING);
+    assert_int_equal(r.why.v[5] / 16, FW_LIMIT_STEP_GENERATOR);
+    assert_true(r.why.v[6] > 1000);
+    assert_true(fabs(r.v_limit - 0.01782) < 1e-12);
+    assert_int_equal(r.v_by, FW_LIMIT_STEP_GENERATOR);
 }
 
 static void check_unreachable_row(void **state)
@@ -196,6 +278,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(reject_words),
+        cmocka_unit_test(param_set_rule_words),
+        cmocka_unit_test(timing_limit_words),
         cmocka_unit_test(progress_in_a_log),
         cmocka_unit_test_setup(check_holding_still_passes, setup),
         cmocka_unit_test_setup(check_speed_jump_is_acceleration, setup),

@@ -31,7 +31,7 @@ printf 'step_pulse_ns = 6000\n' >"$tmp/pulse.params"
 cp "$tmp/pulse.params" "$tmp/pulse.orig"
 "$T" --iface nosuchcan0 --node 1 --params "$tmp/pulse.params" >"$tmp/out" 2>"$tmp/err"; rc=$?
 check "a set the controller cannot adopt exits 2" test $rc -eq 2
-check "it says so" grep -q "pulse.params: the controller cannot adopt this set at its 200000 Hz step interrupts" "$tmp/err"
+check "it names the line and the rule, with the figures" grep -q "pulse.params:1: step_pulse_ns = 6000 ns does not end within one step interrupt period, 5000 ns at 200 kHz" "$tmp/err"
 check "that file is unchanged" cmp -s "$tmp/pulse.params" "$tmp/pulse.orig"
 
 printf 'PEST\x22\x00\x01\x02' >"$tmp/binary.params"

@@ -13,7 +13,7 @@
 #include "fw/move.h"
 
 static tse_geometry G;
-static const fw_limits LIM = {0.2, 1.0, 0.3, 1.0, 10.0, 0.5, 2.0, 1000.0};
+static const fw_limits LIM = {0.2, 1.0, 0.3, 1.0, 10.0, 0.5, 2.0, 1000.0, FW_LIMIT_SLIDE_VMAX};
 
 static int setup(void **state)
 {

@@ -21,7 +21,7 @@
 
 static tse_geometry G;
 /* slide_vmax, slide_amax, plate_vmax, amax, jmax, wmax, dwmax, segment_hz */
-static const fw_limits LIM_PLATE = {100.0, 1000.0, 0.3, 1.0, 10.0, 0.5, 2.0, 1000.0};
+static const fw_limits LIM_PLATE = {100.0, 1000.0, 0.3, 1.0, 10.0, 0.5, 2.0, 1000.0, FW_LIMIT_SLIDE_VMAX};
 
 static int setup(void **state)
 {

@@ -39,13 +39,13 @@ static void test_set_one(void **state)
     fw_param_set s, before;
     fw_params_default(&s);
     before = s;
-    assert_int_equal(fw_params_set_one(&s, FP_COUNT, 1), FW_REASON_PARAM_UNKNOWN);
-    assert_int_equal(fw_params_set_one(&s, FP_L, 0), FW_REASON_PARAM_RANGE);
+    assert_int_equal(fw_params_set_one(&s, FP_COUNT, 1, NULL), FW_REASON_PARAM_UNKNOWN);
+    assert_int_equal(fw_params_set_one(&s, FP_L, 0, NULL), FW_REASON_PARAM_RANGE);
     /* In range alone, invalid as a set: alpha_min above alpha_max. */
-    assert_int_equal(fw_params_set_one(&s, FP_ALPHA_MIN, 1300000), FW_REASON_PARAM_SET);
-    assert_int_equal(fw_params_set_one(&s, FP_S_MIN, 900000), FW_REASON_PARAM_SET);
+    assert_int_equal(fw_params_set_one(&s, FP_ALPHA_MIN, 1300000, NULL), FW_REASON_PARAM_SET);
+    assert_int_equal(fw_params_set_one(&s, FP_S_MIN, 900000, NULL), FW_REASON_PARAM_SET);
     assert_memory_equal(&s, &before, sizeof s);
-    assert_int_equal(fw_params_set_one(&s, FP_WATCHDOG_MS, 250), 0);
+    assert_int_equal(fw_params_set_one(&s, FP_WATCHDOG_MS, 250, NULL), 0);
     assert_int_equal(s.v[FP_WATCHDOG_MS], 250);
 }
 
@@ -78,25 +78,25 @@ static void test_board_parameters(void **state)
     assert_int_equal(fw_stepgen_config_from_params(&m, 200000, 1000, &sc), 0);
     assert_int_equal(sc.min_step_interval, 2);
     m.v[FP_STEP_RATE_MAX] = s.v[FP_STEP_RATE_MAX];
-    assert_int_equal(fw_stepgen_config_from_params(&m, 200000, 1000, &sc), -1);
+    assert_int_equal(fw_stepgen_config_from_params(&m, 200000, 1000, &sc), FW_RULE_PULSE_LOW);
     assert_int_equal(s.v[FP_CAN_KBPS], 500);
     before = s;
     /* CAN: four rates, anything else out of range, naming the parameter. */
     const int32_t rates[] = {125, 250, 500, 1000}, bad_rates[] = {124, 126, 300, 800, 999, 1001, 0};
     for (size_t i = 0; i < sizeof rates / sizeof rates[0]; ++i) {
-        assert_int_equal(fw_params_set_one(&s, FP_CAN_KBPS, rates[i]), 0);
+        assert_int_equal(fw_params_set_one(&s, FP_CAN_KBPS, rates[i], NULL), 0);
         assert_int_equal(s.v[FP_CAN_KBPS], rates[i]);
     }
     for (size_t i = 0; i < sizeof bad_rates / sizeof bad_rates[0]; ++i) {
-        assert_int_equal(fw_params_set_one(&s, FP_CAN_KBPS, bad_rates[i]), FW_REASON_PARAM_RANGE);
+        assert_int_equal(fw_params_set_one(&s, FP_CAN_KBPS, bad_rates[i], NULL), FW_REASON_PARAM_RANGE);
         fw_param_set t = s;
         t.v[FP_CAN_KBPS] = bad_rates[i];
         assert_int_equal(fw_params_check(&t), FP_CAN_KBPS);
     }
     assert_int_equal(s.v[FP_CAN_KBPS], 1000);
     /* A switch outside the stroke [0, 0.9 m] is refused, naming it. */
-    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 900001), FW_REASON_PARAM_SET);
-    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 900000), 0);
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 900001, NULL), FW_REASON_PARAM_SET);
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 900000, NULL), 0);
     fw_param_set t = s;
     t.v[FP_HOME_SW_5] = 950000;
     assert_int_equal(fw_params_check(&t), FP_HOME_SW_5);
@@ -105,19 +105,73 @@ static void test_board_parameters(void **state)
      * must stay >= 2 l0 cos alpha_max = 0.318243 m; with eta = 30 deg, w = sqrt(sA^2 + sB^2 +
      * sA sB): both slides at 0.1835 m give 0.317831 (too narrow), at 0.1840 m 0.318697. */
     s = before;
-    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_1, 183500), 0); /* with B at 0.2: 0.332 */
-    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_2, 183500), FW_REASON_PARAM_SET);
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_1, 183500, NULL), 0); /* with B at 0.2: 0.332 */
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_2, 183500, NULL), FW_REASON_PARAM_SET);
     t = s;
     t.v[FP_HOME_SW_2] = 183500;
     assert_int_equal(fw_params_check(&t), FP_HOME_SW_1);
-    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_2, 184000), 0);
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_2, 184000, NULL), 0);
     /* Per scissor, not per slide: 0.1 m and 0.3 m give sqrt(0.13) = 0.3606. */
-    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_4, 300000), 0);
-    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 100000), 0);
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_4, 300000, NULL), 0);
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 100000, NULL), 0);
     /* The timing parameters' own ranges (what fits the step interrupt is the controller's check). */
-    assert_int_equal(fw_params_set_one(&s, FP_STEP_PULSE_NS, 99), FW_REASON_PARAM_RANGE);
-    assert_int_equal(fw_params_set_one(&s, FP_DIR_SETUP_NS, -1), FW_REASON_PARAM_RANGE);
-    assert_int_equal(fw_params_set_one(&s, FP_DIR_SETUP_NS, 0), 0);
+    assert_int_equal(fw_params_set_one(&s, FP_STEP_PULSE_NS, 99, NULL), FW_REASON_PARAM_RANGE);
+    assert_int_equal(fw_params_set_one(&s, FP_DIR_SETUP_NS, -1, NULL), FW_REASON_PARAM_RANGE);
+    assert_int_equal(fw_params_set_one(&s, FP_DIR_SETUP_NS, 0, NULL), 0);
+}
+
+/* Each rule of a set, with the parameter fw_params_judge blames, worked by hand on the defaults
+ * (kinematics.md's prototype; the switch widths as in test_board_parameters); fw_params_set_one
+ * says the same rule of the change that breaks it. */
+static void test_judge_rules(void **state)
+{
+    (void)state;
+    static const struct {
+        int id, id2;      /* id2: a second change (-1: none) */
+        int32_t value, value2;
+        fw_param_rule rule;
+        int blamed;
+    } cases[] = {
+        {FP_L, -1, 99999, 0, FW_RULE_RANGE, FP_L},                    /* below 0.1 m */
+        {FP_CAN_KBPS, -1, 300, 0, FW_RULE_RANGE, FP_CAN_KBPS},        /* not one of the rates */
+        {FP_ALPHA_MIN, -1, 1300000, 0, FW_RULE_ALPHA_ORDER, FP_ALPHA_MAX},
+        {FP_ALPHA_MAX, -1, 188727, 0, FW_RULE_ALPHA_ORDER, FP_ALPHA_MAX}, /* equal stops */
+        {FP_S_MIN, -1, 900000, 0, FW_RULE_STROKE_ORDER, FP_S_MAX},
+        {FP_S_MAX, -1, 199999, 0, FW_RULE_SWITCH_STROKE, FP_HOME_SW_1}, /* every switch at 0.2 m */
+        {FP_HOME_SW_4, -1, 900001, 0, FW_RULE_SWITCH_STROKE, FP_HOME_SW_4},
+        {FP_HOME_SW_1, FP_HOME_SW_2, 183500, 183500, FW_RULE_SWITCH_REACH, FP_HOME_SW_1},
+        {FP_HOME_SW_6, -1, 50000, 0, FW_RULE_SWITCH_REACH, FP_HOME_SW_5}, /* a pair through its first */
+        {FP_HOME_SW_1, FP_HOME_SW_2, 184000, 184000, FW_RULE_NONE, -1},  /* 0.318697 m: wide enough */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        fw_param_set s;
+        fw_params_default(&s);
+        s.v[cases[i].id] = cases[i].value;
+        if (cases[i].id2 >= 0)
+            s.v[cases[i].id2] = cases[i].value2;
+        const fw_param_fault f = fw_params_judge(&s);
+        if (f.rule != cases[i].rule || f.id != cases[i].blamed)
+            fail_msg("case %zu: rule %d on %d, by hand %d on %d", i, f.rule, f.id, cases[i].rule, cases[i].blamed);
+        assert_int_equal(fw_params_check(&s), cases[i].blamed);
+        /* The last change, made on its own: refused with the same rule (a range, for a value out of
+         * its own), nothing changed. */
+        fw_params_default(&s);
+        if (cases[i].id2 >= 0)
+            s.v[cases[i].id] = cases[i].value;
+        const fw_param_set before = s;
+        const int id = cases[i].id2 >= 0 ? cases[i].id2 : cases[i].id;
+        const int32_t value = cases[i].id2 >= 0 ? cases[i].value2 : cases[i].value;
+        fw_param_fault why = {-2, FW_RULE_COUNT};
+        const int r = fw_params_set_one(&s, (uint16_t)id, value, &why);
+        if (cases[i].rule == FW_RULE_NONE) {
+            assert_int_equal(r, 0);
+            assert_int_equal(why.rule, FW_RULE_NONE);
+            continue;
+        }
+        assert_int_equal(r, cases[i].rule == FW_RULE_RANGE ? FW_REASON_PARAM_RANGE : FW_REASON_PARAM_SET);
+        assert_int_equal(why.rule, cases[i].rule);
+        assert_memory_equal(&s, &before, sizeof s);
+    }
 }
 
 static void test_record(void **state)
@@ -197,6 +251,7 @@ int main(void)
         cmocka_unit_test(test_defaults_are_the_prototype),
         cmocka_unit_test(test_set_one),
         cmocka_unit_test(test_board_parameters),
+        cmocka_unit_test(test_judge_rules),
         cmocka_unit_test(test_record),
         cmocka_unit_test(test_older_record),
     };

@@ -18,7 +18,8 @@
 
 /* The slide speed limit the defaults give at 100 kHz steps and 1 kHz segments, by hand: a
  * reversing segment holds 100 - 2 ticks of DIR set-up = 98 steps, 98 kHz / 1.28M steps/m =
- * 76.5625 mm/s, of which planning uses 90 % (test_limits.c).  Below the 150 mm/s parameter. */
+ * 76.5625 mm/s, of which planning uses 90 % (test_limits.c).  Below the 150 mm/s parameter: the
+ * step generator's limit is the one in effect. */
 #define SLIDE_VMAX 0.06890625
 
 enum { REJ_FUNCTION, REJ_SEQ, REJ_REASON, REJ_SCISSOR, REJ_KIN, REJ_FIELD, REJ_WHERE };
@@ -114,31 +115,52 @@ static proto_message refused_point(double d, int *slide, double *dq)
     return reject_of(from, TRAJ_FN);
 }
 
-/* Too fast for the slide speed: with the acceleration limit at its 20 m/s^2 maximum, jumping to
- * speed v from rest measures v / 10 ms / 20 = 5 v against the limit, while the speed is v / 69 mm/s,
- * 14.5 v: the speed is the worse.  Expected: that slide's travel / 50 ms against SLIDE_VMAX, to
- * 2 % (the path bends a little in slide space). */
-static void test_timing_speed(void **state)
+static void set_param(int id, int32_t value)
 {
-    (void)state;
-    start();
-    unsigned from = F.tx_count;
-    const int32_t set[2] = {FP_SLIDE_AMAX, 20000000};
+    const unsigned from = F.tx_count;
+    const int32_t set[2] = {id, value};
     send(PM_PARAM_SET, set);
     fw_poll(&C);
     assert_int_equal(answer(from, proto_table[PM_PARAM_SET].function, NULL), 'a');
+}
+
+/* Too fast for the slide speed: with the acceleration limit at its 20 m/s^2 maximum, jumping to
+ * speed v from rest measures v / 10 ms / 20 = 5 v against the limit, while the speed is v / 69 mm/s,
+ * 14.5 v: the speed is the worse.  Expected: that slide's travel / 50 ms against `vmax`, to 2 %
+ * (the path bends a little in slide space), the limit named as `limit`. */
+static void timing_speed(int32_t slide_vmax_um, double vmax, fw_slide_limit limit)
+{
+    start();
+    set_param(FP_SLIDE_AMAX, 20000000);
+    set_param(FP_SLIDE_VMAX, slide_vmax_um);
     home();
     int k;
     double dq;
     const proto_message r = refused_point(0.004, &k, &dq);
-    const double want = dq / 0.05 / SLIDE_VMAX;
+    const double want = dq / 0.05 / vmax;
     assert_true(want > 1.2);
     assert_int_equal(r.v[REJ_REASON], FW_REASON_TIMING);
-    assert_int_equal(r.v[REJ_FIELD], k + 1);
+    assert_int_equal(r.v[REJ_FIELD], k + 1 + 16 * (int)limit);
     assert_int_equal(r.v[REJ_SCISSOR], k / 2 + 1);
     assert_int_equal(r.v[REJ_KIN], 0);
     if (fabs(r.v[REJ_WHERE] - 1000.0 * want) > 20.0 * want)
         fail_msg("where %d, by hand %.0f", r.v[REJ_WHERE], 1000.0 * want);
+}
+
+/* The defaults: the step generator's 68.9 mm/s binds, not slide_vmax's 150, and the frame says so
+ * (field + 32) with the demand per mille of 68.9 mm/s. */
+static void test_timing_speed(void **state)
+{
+    (void)state;
+    timing_speed(150000, SLIDE_VMAX, FW_LIMIT_STEP_GENERATOR);
+}
+
+/* slide_vmax at 40 mm/s, below the step generator's 68.9: slide_vmax binds, named as such (field
+ * + 0), the demand per mille of 40 mm/s. */
+static void test_timing_speed_slide_vmax(void **state)
+{
+    (void)state;
+    timing_speed(40000, 0.04, FW_LIMIT_SLIDE_VMAX);
 }
 
 /* Slow enough for the speed limit (a fifth of it) but reached at once from rest: the acceleration,
@@ -176,6 +198,75 @@ static void test_timing_capped(void **state)
     assert_int_equal(r.v[REJ_WHERE], 65535);
 }
 
+/* A PARAM_SET refused names the parameter set (field) and the rule the set breaks (where), each
+ * case worked by hand at the harness's 100 kHz step interrupts (10 us) and 1 kHz segments; nothing
+ * changes.  A case may first set another parameter (pre_id, -1 for none), undone after it. */
+static void test_param_set_rules(void **state)
+{
+    (void)state;
+    static const struct {
+        int pre_id;
+        int32_t pre_value;
+        int id;
+        int32_t value;
+        fw_reason reason;
+        fw_param_rule rule;
+    } cases[] = {
+        {-1, 0, FP_L, 0, FW_REASON_PARAM_RANGE, FW_RULE_NONE},                    /* below 0.1 m */
+        {-1, 0, FP_ALPHA_MIN, 1300000, FW_REASON_PARAM_SET, FW_RULE_ALPHA_ORDER}, /* 1.3 > 1.215271 rad */
+        {-1, 0, FP_S_MIN, 900000, FW_REASON_PARAM_SET, FW_RULE_STROKE_ORDER},     /* = s_max, 0.9 m */
+        {-1, 0, FP_S_MAX, 150000, FW_REASON_PARAM_SET, FW_RULE_SWITCH_STROKE},    /* switches at 0.2 m */
+        /* The alpha_max stop: a scissor at least 2 l0 cos(alpha_max) = 2 (0.2647) (1.727)
+         * cos(1.215271) = 0.318243 m wide; with cos(2 eta) = 1/2 its width is
+         * sqrt(a^2 + b^2 + a b): 0.1835 m and 0.2 m give 0.332, both at 0.1835 m 0.317831. */
+        {FP_HOME_SW_1, 183500, FP_HOME_SW_2, 183500, FW_REASON_PARAM_SET, FW_RULE_SWITCH_REACH},
+        {-1, 0, FP_STEP_PULSE_NS, 10000, FW_REASON_PARAM_SET, FW_RULE_PULSE_PERIOD}, /* a whole tick */
+        {-1, 0, FP_STEP_PULSE_NS, 6000, FW_REASON_PARAM_SET, FW_RULE_PULSE_LOW},     /* 4 us low < 6 high */
+        /* 1 ms: 100 ticks + 1, more than a segment's 100; 0.99 ms: 99 + 1, none left for a step. */
+        {-1, 0, FP_DIR_SETUP_NS, 1000000, FW_REASON_PARAM_SET, FW_RULE_DIR_SETUP_ROOM},
+        {-1, 0, FP_DIR_SETUP_NS, 990000, FW_REASON_PARAM_SET, FW_RULE_DIR_SETUP_ROOM},
+    };
+    reach(FW_STATE_DISABLED);
+    const fw_param_set before = C.params;
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        if (cases[i].pre_id >= 0)
+            set_param(cases[i].pre_id, cases[i].pre_value);
+        const unsigned from = F.tx_count;
+        const int32_t set[2] = {cases[i].id, cases[i].value};
+        send(PM_PARAM_SET, set);
+        fw_poll(&C);
+        const proto_message r = reject_of(from, proto_table[PM_PARAM_SET].function);
+        if (r.v[REJ_REASON] != (int32_t)cases[i].reason || r.v[REJ_WHERE] != (int32_t)cases[i].rule)
+            fail_msg("case %zu: reason %d rule %d, by hand %d and %d", i, r.v[REJ_REASON], r.v[REJ_WHERE],
+                     cases[i].reason, cases[i].rule);
+        assert_int_equal(r.v[REJ_FIELD], cases[i].id);
+        assert_int_equal(r.v[REJ_SCISSOR], 0);
+        assert_int_equal(r.v[REJ_KIN], 0);
+        if (cases[i].pre_id >= 0)
+            set_param(cases[i].pre_id, before.v[cases[i].pre_id]);
+        assert_memory_equal(&C.params, &before, sizeof before);
+    }
+    /* The pulse rule broken by another parameter: at step_rate_max 50k/s a step comes at most every
+     * 2 ticks (20 us), and a 6 us pulse leaves 14 us low; back at 200k/s, every tick (10 us), 4 us
+     * low: refused, naming step_rate_max and the pulse's rule. */
+    set_param(FP_STEP_RATE_MAX, 50000);
+    set_param(FP_STEP_PULSE_NS, 6000);
+    const unsigned from = F.tx_count;
+    const int32_t set[2] = {FP_STEP_RATE_MAX, 200000};
+    send(PM_PARAM_SET, set);
+    fw_poll(&C);
+    const proto_message r = reject_of(from, proto_table[PM_PARAM_SET].function);
+    assert_int_equal(r.v[REJ_REASON], FW_REASON_PARAM_SET);
+    assert_int_equal(r.v[REJ_FIELD], FP_STEP_RATE_MAX);
+    assert_int_equal(r.v[REJ_WHERE], FW_RULE_PULSE_LOW);
+    assert_int_equal(C.params.v[FP_STEP_RATE_MAX], 50000);
+    /* The longest of each that fits: a 5 us pulse leaves 5 us low; 0.98 ms of set-up is 98 + 1 ticks,
+     * one left for a step. */
+    set_param(FP_STEP_PULSE_NS, 5000);
+    set_param(FP_STEP_RATE_MAX, 200000);
+    set_param(FP_DIR_SETUP_NS, 980000);
+}
+
 /* The encoding alone, on results written out by hand. */
 static void test_values(void **state)
 {
@@ -190,10 +281,15 @@ static void test_values(void **state)
     fw_reject_values(0x8E, 9, FW_REASON_TIMING, 0, &why, v);
     const int32_t speed[7] = {0x0E, 9, FW_REASON_TIMING, 2, 0, 4, 1350};
     assert_memory_equal(v, speed, sizeof speed);
+    why.limit = FW_LIMIT_STEP_GENERATOR; /* the step generator's speed limit: + 2 x 16 */
+    fw_reject_values(0x0E, 9, FW_REASON_TIMING, 0, &why, v);
+    assert_int_equal(v[5], 4 + 32);
+    assert_int_equal(v[6], 1350);
     why.accel = true;
     why.ratio = 1e6; /* a million times over: the field's top */
     fw_reject_values(0x0E, 9, FW_REASON_TIMING, 0, &why, v);
-    assert_int_equal(v[5], 4 + FW_REJECT_ACCEL);
+    assert_int_equal(v[5], 4 + 16); /* the acceleration, as ever */
+    assert_int_equal(FW_REJECT_ACCEL, 16);
     assert_int_equal(v[6], 65535);
     why.ratio = NAN;
     fw_reject_values(0x0E, 9, FW_REASON_TIMING, 0, &why, v);
@@ -215,6 +311,17 @@ static void test_values(void **state)
     fw_reject_values(0x10, 0, FW_REASON_PARAM_RANGE, FP_SLIDE_AMAX, NULL, v);
     const int32_t pr[7] = {0x10, 0, FW_REASON_PARAM_RANGE, 0, 0, FP_SLIDE_AMAX, 0};
     assert_memory_equal(v, pr, sizeof pr);
+
+    /* A parameter's refusal: the id (255 past it), and for param_set the rule in where. */
+    fw_reject_param_values(0x10, FW_REASON_PARAM_SET, FP_STEP_PULSE_NS, FW_RULE_PULSE_LOW, v);
+    const int32_t ps[7] = {0x10, 0, FW_REASON_PARAM_SET, 0, 0, FP_STEP_PULSE_NS, 8};
+    assert_memory_equal(v, ps, sizeof ps);
+    fw_reject_param_values(0x10, FW_REASON_PARAM_RANGE, FP_L, FW_RULE_RANGE, v);
+    const int32_t pl[7] = {0x10, 0, FW_REASON_PARAM_RANGE, 0, 0, FP_L, 0};
+    assert_memory_equal(v, pl, sizeof pl);
+    fw_reject_param_values(0x0F, FW_REASON_PARAM_UNKNOWN, 300, FW_RULE_NONE, v);
+    const int32_t pu[7] = {0x0F, 0, FW_REASON_PARAM_UNKNOWN, 0, 0, 255, 0};
+    assert_memory_equal(v, pu, sizeof pu);
 }
 
 int main(void)
@@ -225,6 +332,8 @@ int main(void)
         cmocka_unit_test(test_move_while_disabled),
         cmocka_unit_test(test_commit_and_clear_refusals),
         cmocka_unit_test(test_timing_speed),
+        cmocka_unit_test(test_timing_speed_slide_vmax),
+        cmocka_unit_test(test_param_set_rules),
         cmocka_unit_test(test_timing_acceleration),
         cmocka_unit_test(test_timing_capped),
     };

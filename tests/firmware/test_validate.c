@@ -20,7 +20,7 @@
 #include "fw/move.h"
 #include "fw/validate.h"
 
-static const fw_limits LIM = {0.2, 1.0, 0.3, 1.0, 10.0, 0.5, 2.0, 1000.0};
+static const fw_limits LIM = {0.2, 1.0, 0.3, 1.0, 10.0, 0.5, 2.0, 1000.0, FW_LIMIT_SLIDE_VMAX};
 
 /* splitmix64 */
 static uint64_t next(uint64_t *s)

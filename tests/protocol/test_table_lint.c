@@ -102,10 +102,41 @@ static void test_ranges_and_layout(void **state)
     expect_one(&d, "MSG.len", "inside or before the previous field");
 }
 
+/* The code tables (a timing refusal's limit, a refused set's rule): the real ones print; values
+ * out of order, a name that is no identifier, missing or unprintable words are each reported. */
+static int lint_codes(const proto_code *c)
+{
+    FILE *err = tmpfile();
+    assert_non_null(err);
+    const int n = codes_lint(c, "CODES", err);
+    rewind(err);
+    const size_t len = fread(report, 1, sizeof report - 1, err);
+    report[len] = '\0';
+    fclose(err);
+    return n;
+}
+
+static void test_codes(void **state)
+{
+    (void)state;
+    assert_int_equal(lint_codes(proto_slide_limits), 0);
+    assert_int_equal(lint_codes(proto_param_rules), 0);
+    const proto_code skip[] = {{0, "a", "words"}, {2, "b", "words"}, {0, 0, 0}};
+    assert_int_equal(lint_codes(skip), 1);
+    assert_non_null(strstr(report, "CODES: code 'b' has value 2 where 1 is due"));
+    const proto_code name[] = {{0, "a b", "words"}, {0, 0, 0}};
+    assert_int_equal(lint_codes(name), 1);
+    assert_non_null(strstr(report, "is not an identifier"));
+    const proto_code words[] = {{0, "a", ""}, {1, "b", "x | y"}, {2, "c", 0}, {0, 0, 0}};
+    assert_int_equal(lint_codes(words), 3);
+    assert_non_null(strstr(report, "code 'b': words are missing or hold"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_clean),
+        cmocka_unit_test(test_codes),
         cmocka_unit_test(test_scaled_without_unit),
         cmocka_unit_test(test_text_unfit_for_dbc),
         cmocka_unit_test(test_ranges_and_layout),

@@ -58,7 +58,8 @@ static void setup(void)
     /* The controller's limits at the parameter defaults (params.c, controller.c): slides 0.15 m/s
      * capped by 90 % of 199 steps a segment at 1.28M steps/m (0.1399 m/s), 1 m/s^2; plate 0.3 m/s,
      * 1 m/s^2, 10 m/s^3; 0.5 rad/s, 2 rad/s^2. */
-    board_lim = (fw_limits){0.9f * 199.0f * SEGMENT_HZ / 1280000.0f, 1.0f, 0.3f, 1.0f, 10.0f, 0.5f, 2.0f, SEGMENT_HZ};
+    board_lim = (fw_limits){0.9f * 199.0f * SEGMENT_HZ / 1280000.0f, 1.0f, 0.3f, 1.0f, 10.0f, 0.5f, 2.0f, SEGMENT_HZ,
+                            FW_LIMIT_STEP_GENERATOR};
 }
 
 typedef struct {

@@ -20,6 +20,22 @@ check "the simulator took its SI parameter file (slide_vmax = 0.14 m/s)" "grep -
 $T params set plate_vmax 0.25 >/dev/null 2>&1 && $T params save >out.txt 2>&1; rc=$?
 check "PARAM_SAVE writes the file back as text, with the new value and the old" \
   "[ $rc -eq 0 ] && grep -q '^plate_vmax *= *0.25' params.txt && grep -q '^slide_vmax *= *0.14' params.txt"
+check "PARAM_SAVE keeps the user's lines as they were and adds only what differs" \
+  '[ "$(sed -n 1p params.txt)" = "# a user-written file" ] && [ "$(sed -n 2p params.txt)" = "slide_vmax = 0.14   # m/s" ] && [ $(wc -l <params.txt) -le 5 ]'
+$T params get slide_vmax >out.txt 2>&1
+check "params get shows the slide speed limit in effect (the step generator's, below slide_vmax)" \
+  "grep -q '^# slide speed limit in effect: 0.1392 m/s, set by the step generator' out.txt"
+$T params set step_pulse_ns 4000 >out.txt 2>&1; rc=$?
+check "a refused set names the rule it breaks, and why with the figures" \
+  "[ $rc -eq 3 ] && grep -q 'rejected: param_set: step_pulse_ns: the STEP pulse (step_pulse_ns) must leave a low time' out.txt \
+   && grep -q 'why: step_pulse_ns = 4000 ns leaves 1000 ns low' out.txt && ! grep -q 'is valid' out.txt"
+$T params dump >dump.params 2>out.txt; rc=$?
+check "params dump writes units as comments" "[ $rc -eq 0 ] && grep -qx 'plate_vmax = 0.25   # m/s' dump.params"
+tse-sim --iface nosuchcan0 --node 2 --params dump.params >out.txt 2>&1; rc=$?
+check "tse-sim --params reads the dump (then finds no CAN: exit 1)" \
+  "[ $rc -eq 1 ] && grep -q 'cannot open CAN interface nosuchcan0' out.txt"
+echo "0,0,1.1,0,0,0" | tse-kin ik --params dump.params >out.txt 2>&1; rc=$?
+check "tse-kin --params reads the dump" "[ $rc -eq 0 ] && grep -q '^ok,' out.txt"
 $T status >out.txt 2>&1
 check "status before homing says the pose is unknown" "grep -q 'pose unknown (not homed)' out.txt"
 

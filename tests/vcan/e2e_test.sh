@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The end-to-end scenario through the harness, then the candump of the whole session decoded with
 # the DBC by Debian's python3-canmatrix on the host.
-# Usage: e2e_test.sh PYTHON DBC WORKDIR TSE_SIM TSECTL
+# Usage: e2e_test.sh PYTHON DBC WORKDIR TSE_SIM TSECTL TSE_KIN
 set -u
 py=$1; dbc=$2; work=$3; shift 3
 here=$(dirname "$(readlink -f "$0")")

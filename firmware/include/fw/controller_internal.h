@@ -10,6 +10,8 @@ void fw_ack(fw_controller *c, uint8_t function, uint8_t seq, uint32_t detail);
  * FW_REASON_STATE always carries the controller's state, whatever the caller passes. */
 void fw_reject(fw_controller *c, uint8_t function, uint8_t seq, fw_reason reason, uint8_t field,
                const fw_plan_result *why);
+/* A REJECT of PARAM_GET or PARAM_SET about parameter id, with the rule a refused set breaks. */
+void fw_reject_param(fw_controller *c, uint8_t function, fw_reason reason, uint16_t id, fw_param_rule rule);
 
 void fw_set_state(fw_controller *c, fw_state s);
 void fw_drives(fw_controller *c, bool on);
@@ -17,7 +19,9 @@ void fw_drives(fw_controller *c, bool on);
 void fw_fault_raise(fw_controller *c, fw_fault f);
 /* A controlled stop of whatever moves (homing included). */
 void fw_stop_motion(fw_controller *c);
-int fw_apply_params(fw_controller *c, const fw_param_set *s);
+/* Adopts set s: FW_RULE_NONE, or the rule it breaks at this controller's rates (fw/limits.h), or
+ * FW_RULE_NOT_AT_REST; nothing changes then. */
+fw_param_rule fw_apply_params(fw_controller *c, const fw_param_set *s);
 
 /* Starts motion from a validated source; the caller has filled c->move or c->traj. */
 void fw_start_source(fw_controller *c, fw_source src);

@@ -7,7 +7,7 @@
  * the step rate); slide accelerations within theirs.  A path that leaves the workspace is
  * rejected with its first failing point; one that is only too fast is stretched in time.  Planning
  * holds the slides to 95 % of their limits, for the step quantisation; a move still
- * too fast after every stretch is refused with TIMING, its ratio against the limit parameters (so
+ * too fast after every stretch is refused with TIMING, its ratio against the limits in effect (so
  * it may be from 0.95 up). */
 #ifndef FW_MOVE_H
 #define FW_MOVE_H
@@ -20,11 +20,21 @@
 #include "fw/types.h"
 #include "tse/ik.h"
 
+/* The limit a slide's demand is held to: REJECT's field for a timing refusal carries it times 16
+ * (fw/reject.h; proto_slide_limits words each).  Wire values: append, never renumber. */
+typedef enum {
+    FW_LIMIT_SLIDE_VMAX = 0,     /* the speed limit, slide_vmax itself */
+    FW_LIMIT_SLIDE_AMAX = 1,     /* the acceleration limit, slide_amax */
+    FW_LIMIT_STEP_GENERATOR = 2, /* the speed limit set by the step generator (fw/limits.h) */
+    FW_LIMIT_COUNT
+} fw_slide_limit;
+
 typedef struct {
     tse_real slide_vmax, slide_amax;             /* m/s, m/s^2 (step rate already folded in) */
     tse_real plate_vmax, plate_amax, plate_jmax; /* m/s, m/s^2, m/s^3 */
     tse_real plate_wmax, plate_dwmax;            /* rad/s, rad/s^2 */
     tse_real segment_hz;                         /* control segments per second */
+    fw_slide_limit vmax_by;                      /* what sets slide_vmax (fw_limits_from_params) */
 } fw_limits;
 
 typedef enum { FW_MOVE_DURATION = 0, FW_MOVE_SPEED = 1 } fw_move_kind;
@@ -58,15 +68,17 @@ typedef struct {
     tse_real where;    /* KINEMATICS: its u, 0..1 */
     uint8_t slide;     /* TIMING: the slide with the worst demand, 1..6 (A1, B1, A2, B2, A3, B3) */
     bool accel;        /* TIMING: that demand is an acceleration (else a speed) */
-    tse_real ratio;    /* TIMING: the demand over the slide limit parameter (1: at the limit) */
+    fw_slide_limit limit; /* TIMING: the limit it is against (FW_LIMIT_SLIDE_AMAX when accel) */
+    tse_real ratio;    /* TIMING: the demand over that limit (1: at the limit) */
 } fw_plan_result;
 
 /* A result with no reason and every field 0. */
 void fw_plan_clear(fw_plan_result *res);
 
-/* A TIMING refusal naming the worst demand w of a slide check whose limits were `scale` times the
- * slide limit parameters (so the ratio against the parameters is scale times w's). */
-void fw_plan_timing(fw_plan_result *res, fw_slide_worst w, tse_real scale);
+/* A TIMING refusal naming the worst demand w of a slide check whose limits were `scale` times
+ * lim's (so the ratio against lim's is scale times w's), and the limit that is (lim->vmax_by for a
+ * speed). */
+void fw_plan_timing(fw_plan_result *res, fw_slide_worst w, tse_real scale, const fw_limits *lim);
 
 /* Plans from pose `from` (whose slides are q_from) to `to`.  kind/value: the duration [s], or the
  * plate speed [m/s] (rotation-only moves then use the angular limit).  Returns 0 on success, with

@@ -75,19 +75,51 @@ void fw_params_default(fw_param_set *s);
 /* Kinematic parameters of a set (SI units). */
 void fw_params_kinematics(const fw_param_set *s, tse_params *out);
 
+/* The rules a parameter set can break, one code each: REJECT's `where` for a param_set refusal
+ * (proto_param_rules in proto_codes.c words each).  Wire values: append, never renumber. */
+typedef enum {
+    FW_RULE_NONE = 0,           /* the set is valid (or, from an older controller: not said) */
+    FW_RULE_RANGE = 1,          /* a value outside its range, or a can_kbps not one of the rates */
+    FW_RULE_GEOMETRY = 2,       /* kinematics.md's valid sets, other than the two orders below */
+    FW_RULE_ALPHA_ORDER = 3,    /* alpha_min < alpha_max */
+    FW_RULE_STROKE_ORDER = 4,   /* s_min < s_max */
+    FW_RULE_SWITCH_STROKE = 5,  /* each home_sw_k within s_min..s_max */
+    FW_RULE_SWITCH_REACH = 6,   /* the six switches reachable together (fw_params_judge) */
+    FW_RULE_PULSE_PERIOD = 7,   /* the STEP pulse ends within its step interrupt period */
+    FW_RULE_PULSE_LOW = 8,      /* ... and leaves as long low before the same slide's next step */
+    FW_RULE_DIR_SETUP_ROOM = 9, /* the DIR set-up leaves room for a step in a reversing segment */
+    FW_RULE_CONFIG = 10,        /* the controller's step and segment rates cannot run any set */
+    FW_RULE_NOT_AT_REST = 11,   /* the step generator was still running */
+    FW_RULE_COUNT
+} fw_param_rule;
+
+/* Why a set is refused: the rule, and the parameter the check blames (-1 for none: the set is
+ * valid, or the rule is not about one parameter). */
+typedef struct {
+    int id;
+    fw_param_rule rule;
+} fw_param_fault;
+
 /* Checks every range (and can_kbps against its four rates), then the geometry, then that the six
  * homing switches can be reached together: with every slide at its switch each scissor must be
  * within its angle stops (its width at least 2 l0 cos alpha_max), otherwise six slides seeking
- * down together would be stopped by the mechanism before the switches.  Returns -1 when all is
- * well, otherwise the id of the first parameter at fault. */
+ * down together would be stopped by the mechanism before the switches.  The first rule broken,
+ * with the parameter at fault (a switch pair is blamed through its first switch); rule
+ * FW_RULE_NONE and id -1 when all is well.  What depends on the controller's configuration (the
+ * STEP pulse and DIR set-up against its step interrupt rate) is fw_params_judge_config's
+ * (fw/limits.h). */
+fw_param_fault fw_params_judge(const fw_param_set *s);
+
+/* fw_params_judge's parameter: -1 when all is well, otherwise the id of the first parameter at
+ * fault. */
 int fw_params_check(const fw_param_set *s);
 
 /* Applies one change to *s only if the resulting set passes fw_params_check.
  * Returns 0, FW_REASON_PARAM_UNKNOWN, FW_REASON_PARAM_RANGE (outside [min, max], or a can_kbps
- * that is not one of the four rates) or FW_REASON_PARAM_SET.
- * What depends on the controller's configuration (the STEP pulse against the step interrupt rate)
- * is checked when the controller adopts the set (fw_apply_params). */
-int fw_params_set_one(fw_param_set *s, uint16_t id, int32_t value);
+ * that is not one of the four rates) or FW_REASON_PARAM_SET, with the rule broken in *why (may
+ * be NULL).  What depends on the controller's configuration (the STEP pulse against the step
+ * interrupt rate) is checked when the controller adopts the set (fw_apply_params). */
+int fw_params_set_one(fw_param_set *s, uint16_t id, int32_t value, fw_param_fault *why);
 
 /* Whether value is acceptable for parameter id on its own (range, and the CAN rates). */
 int fw_param_value_ok(uint16_t id, int32_t value);

@@ -38,4 +38,7 @@ proto_error proto_decode(const hal_can_frame *f, proto_direction dir, proto_mess
 /* Name of a value of an enumeration table, or "?". */
 const char *proto_enum_name(const proto_enum_entry *table, int32_t value);
 
+/* Words of a code of a code table (proto_table.h), or NULL for a value it does not have. */
+const char *proto_code_words(const proto_code *table, int32_t value);
+
 #endif

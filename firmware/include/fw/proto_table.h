@@ -36,6 +36,15 @@ typedef struct {
     const char *name;
 } proto_enum_entry;
 
+/* Codes a field carries for one reason, each with its words (what tsectl and tse.can say): the
+ * limit a timing refusal names and the rule a param_set refusal names.  Terminated by a NULL
+ * name. */
+typedef struct {
+    int32_t value;
+    const char *name;
+    const char *words;
+} proto_code;
+
 typedef struct {
     const char *name;
     proto_field_type type;
@@ -112,5 +121,19 @@ typedef struct {
 } proto_enum_def;
 extern const proto_enum_def proto_enums[];
 extern const proto_enum_entry proto_traj_end_names[];
+
+/* REJECT's field for timing, divided by 16 (fw_slide_limit): the limit the demand is against. */
+extern const proto_code proto_slide_limits[];
+/* REJECT's where for param_set (fw_param_rule): the rule the set breaks. */
+extern const proto_code proto_param_rules[];
+
+/* Every code table above, with the key the Python tables give it and the title the protocol
+ * document gives it; ends with a NULL table. */
+typedef struct {
+    const proto_code *table;
+    const char *key;
+    const char *title;
+} proto_code_def;
+extern const proto_code_def proto_code_tables[];
 
 #endif

@@ -5,22 +5,26 @@
  * - scissor: KINEMATICS, the first failing scissor 1..3; TIMING, the scissor of the slide over
  *   its limit; otherwise 0.  kin_status: KINEMATICS only, otherwise 0.
  * - field: RANGE, the offending field's index; PARAM_UNKNOWN, PARAM_RANGE, PARAM_SET, the
- *   parameter id; STATE, the fw_state that refused; TIMING, the slide 1..6 (A1, B1, A2, B2, A3,
- *   B3: q index + 1) with the worst demand, plus FW_REJECT_ACCEL when that demand is an
- *   acceleration rather than a speed; otherwise 0.
+ *   parameter id (255 for one above); STATE, the fw_state that refused; TIMING, the slide 1..6
+ *   (A1, B1, A2, B2, A3, B3: q index + 1) with the worst demand, plus FW_REJECT_LIMIT times the
+ *   limit it is against (fw_slide_limit: 0 slide_vmax, 1 slide_amax, which makes the old
+ *   "+16: acceleration", 2 the step generator's speed limit); otherwise 0.
  * - where: KINEMATICS, the failing point's position along the path in per mille (0..1000);
- *   TIMING, the demand in per mille of the limit parameter (1000: at it; 1350: 35 % over), at
- *   most 65535. */
+ *   TIMING, the demand in per mille of the limit field names (1000: at it; 1350: 35 % over), at
+ *   most 65535; PARAM_SET, the rule the set breaks (fw_param_rule). */
 #ifndef FW_REJECT_H
 #define FW_REJECT_H
 
 #include <stdint.h>
 
 #include "fw/move.h"
+#include "fw/params.h"
 #include "fw/proto_table.h"
 #include "fw/types.h"
 
-#define FW_REJECT_ACCEL 16
+/* A timing refusal's field: slide + FW_REJECT_LIMIT * limit. */
+#define FW_REJECT_LIMIT 16
+#define FW_REJECT_ACCEL (FW_REJECT_LIMIT * FW_LIMIT_SLIDE_AMAX)
 
 /* v[] in REJECT's field order (function, seq, reason, scissor, kin_status, field, where), every
  * value inside its field's range.  `field` is what the reason names (for STATE the state, the
@@ -28,5 +32,10 @@
  * the field. */
 void fw_reject_values(uint8_t function, uint8_t seq, fw_reason reason, uint8_t field,
                       const fw_plan_result *why, int32_t v[PROTO_MAX_FIELDS]);
+
+/* The same for a refusal about parameter id (PARAM_UNKNOWN, PARAM_RANGE, PARAM_SET), and for
+ * PARAM_SET the rule the set breaks. */
+void fw_reject_param_values(uint8_t function, fw_reason reason, uint16_t id, fw_param_rule rule,
+                            int32_t v[PROTO_MAX_FIELDS]);
 
 #endif

@@ -52,8 +52,9 @@ typedef enum {
     FW_BOUND_PLATE_WMAX = 4,
     FW_BOUND_PLATE_DWMAX = 5,
     FW_BOUND_PLATE_JMAX_ANGULAR = 6, /* the rotation's ramps: plate_dwmax x plate_jmax / plate_amax */
-    FW_BOUND_SLIDE_VMAX = 7,   /* a slide's speed limit (slide_vmax, or the step rate where lower) */
+    FW_BOUND_SLIDE_VMAX = 7,   /* a slide's speed limit, slide_vmax */
     FW_BOUND_SLIDE_AMAX = 8,   /* a slide's acceleration limit */
+    FW_BOUND_STEP_GENERATOR = 9, /* a slide's speed limit in effect, the step generator's (fw/limits.h) */
     FW_BOUND_COUNT
 } fw_move_bound;
 

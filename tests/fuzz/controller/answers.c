@@ -38,10 +38,14 @@ static void check_reject_details(const int64_t *v, fw_state state_before, bool s
         FUZZ_CHECK(scissor >= 1 && scissor <= 3 && kin >= 1 && kin <= 8 && where <= 1000);
         break;
     case FW_REASON_TIMING: {
-        const int64_t slide = field & ~(int64_t)16;
-        FUZZ_CHECK(slide >= 1 && slide <= 6 && scissor == (slide + 1) / 2 && kin == 0);
+        /* The slide, plus 16 times the limit (fw_slide_limit). */
+        const int64_t slide = field % 16, limit = field / 16;
+        FUZZ_CHECK(slide >= 1 && slide <= 6 && scissor == (slide + 1) / 2 && kin == 0 && limit < FW_LIMIT_COUNT);
         break;
     }
+    case FW_REASON_PARAM_SET: /* the rule the set breaks, always said */
+        FUZZ_CHECK(scissor == 0 && kin == 0 && where > FW_RULE_NONE && where < FW_RULE_COUNT);
+        break;
     case FW_REASON_STATE:
         FUZZ_CHECK(scissor == 0 && kin == 0 && where == 0);
         if (state_known)

@@ -9,8 +9,10 @@
 
 #include "checks.h"
 #include "fuzz_target.h"
+#include "fw/limits.h"
 #include "fw/params.h"
 #include "param_text.h"
+#include "param_text_internal.h"
 #include "ref_text.h"
 
 static const long double PI_L = 3.141592653589793238462643383279502884L;
@@ -98,8 +100,65 @@ static int ref_param_file(const char *data, size_t size, const fw_param_set *bas
             return lineno;
         line[id] = lineno;
     }
-    const int bad = fw_params_check(out);
-    return bad < 0 ? REF_ACCEPTED : line[bad];
+    /* The set as the controller judges it, at its rates (the STEP pulse, the DIR set-up). */
+    const fw_param_fault f = fw_params_judge_config(out, FW_STEP_HZ, FW_SEGMENT_HZ);
+    return f.rule == FW_RULE_NONE ? REF_ACCEPTED : f.id < 0 ? 0 : line[f.id];
+}
+
+/* An accepted file with another set saved into it (param_file_merged, as PARAM_SAVE writes it):
+ * reads back to that set, and every line of the file that does not set a changed value is
+ * there, byte for byte, in its place. */
+static void check_merged(const char *data, size_t size, const fw_param_set *s)
+{
+    static const int changed[] = {FP_PLATE_VMAX, FP_WATCHDOG_MS, FP_SLIDE_AMAX};
+    fw_param_set t = *s;
+    t.v[FP_PLATE_VMAX] = t.v[FP_PLATE_VMAX] == 250000 ? 260000 : 250000;
+    t.v[FP_WATCHDOG_MS] = t.v[FP_WATCHDOG_MS] == 0 ? 700 : 0;
+    t.v[FP_SLIDE_AMAX] = fw_param_table[FP_SLIDE_AMAX].def; /* maybe a change, maybe none */
+    char *text = malloc(size + 1);
+    FUZZ_CHECK(text != NULL);
+    memcpy(text, data, size);
+    text[size] = '\0';
+    char *merged = param_file_merged(text, &t);
+    FUZZ_CHECK(merged != NULL);
+    const char *path = mem_file(merged, strlen(merged));
+    fw_param_set back;
+    fw_params_default(&back);
+    char err[512];
+    const int rc = param_file_read(path, &back, err, sizeof err);
+    if (rc != 0)
+        fprintf(stderr, "%s\n", err);
+    FUZZ_CHECK(rc == 0 && !memcmp(&back, &t, sizeof back));
+    /* Line by line: kept unless it names a changed parameter (its key, before '=' and '#'). */
+    const char *a = text, *b = merged;
+    while (*a) {
+        const size_t la = strcspn(a, "\n"), lb = strcspn(b, "\n");
+        int names_changed = 0;
+        char key[128];
+        /* The key as the reader sees it: after a BOM on the first line. */
+        const size_t bom = a == text && la >= 3 && !memcmp(a, "\xEF\xBB\xBF", 3) ? 3 : 0;
+        const char *eq = memchr(a + bom, '=', la - bom), *hash = memchr(a + bom, '#', la - bom);
+        if (eq && (!hash || eq < hash)) {
+            size_t kl = (size_t)(eq - a) - bom;
+            const char *k = ref_trim(a + bom, &kl);
+            long double per_unit;
+            snprintf(key, sizeof key, "%.*s", (int)(kl < 127 ? kl : 127), k);
+            const int id = ref_lookup(key, strlen(key), &per_unit);
+            for (size_t c = 0; c < sizeof changed / sizeof changed[0]; ++c)
+                names_changed |= id == changed[c];
+        }
+        /* The last line may have had no end: one (LF or CRLF) is added when something follows. */
+        const int last = !a[la];
+        if (!names_changed)
+            FUZZ_CHECK((last ? lb >= la : la == lb) && !memcmp(a, b, la));
+        if (last)
+            break;
+        FUZZ_CHECK(b[lb] == '\n');
+        a += la + 1;
+        b += lb + 1;
+    }
+    free(merged);
+    free(text);
 }
 
 /* Valid, and unlike the defaults in a kinematic, a motion and a switch value. */
@@ -180,4 +239,9 @@ void check_param_file(const char *data, size_t size, unsigned opt)
     if (ref == REF_ACCEPTED)
         FUZZ_CHECK(!memcmp(&s, &want, sizeof s));
     check_written(&s, opt);
+    /* Saving needs a file that reads from the defaults, as tse-sim's does. */
+    fw_param_set d;
+    fw_params_default(&d);
+    if (!(opt & 1) || param_file_read(path, &d, err, sizeof err) == 0)
+        check_merged(data, size, &s);
 }
