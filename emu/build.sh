@@ -8,7 +8,8 @@
 # so a second run with the binary present does nothing but print its path.  The last line of
 # stdout is always that path.
 #
-# Usage: emu/build.sh [--update] [--clean] [-j N]
+# Usage: emu/build.sh [--update] [--clean] [-j N] | --path
+#   --path    print the binary's path if it is built for emu/ as it is, else fail (exit 1)
 #   --update  ask the archive again for the newest QEMU source package (apt-get update with the
 #             private configuration below) instead of the version fetched last time
 #   --clean   build in a fresh tree (otherwise the previous tree is reused: only the files that
@@ -26,13 +27,15 @@ cache=${TSE_EMU_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/tse-emu}
 jobs=${TSE_EMU_JOBS:-2}
 update=0
 clean=0
+path_only=0
 while [ $# -gt 0 ]; do
   case $1 in
     --update) update=1 ;;
     --clean) clean=1 ;;
+    --path) path_only=1 ;;
     -j) jobs=${2:?-j needs a number}; shift ;;
     -j*) jobs=${1#-j} ;;
-    -h|--help) sed -n '2,24p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,25p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "emu/build.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
@@ -115,6 +118,13 @@ resolve_version() {
   echo "$v" > "$version_file"
 }
 
+if [ "$path_only" = 1 ]; then
+  [ -s "$version_file" ] || die "not built (no QEMU source fetched yet): run emu/build.sh"
+  p=$cache/$(printf '%s\n%s\n' "$(cat "$version_file")" "$(emu_inputs_hash)" | sha256sum | cut -c1-16)/qemu-system-arm
+  [ -x "$p" ] || die "not built for emu/ as it is: run emu/build.sh"
+  echo "$p"
+  exit 0
+fi
 if [ "$update" = 1 ] || [ ! -s "$version_file" ]; then
   resolve_version
 fi
@@ -151,9 +161,16 @@ if [ ! -f "$src/.tse-unpacked" ]; then
   command -v dpkg-source >/dev/null || die "dpkg-source missing: run scripts/setup.sh (dpkg-dev)"
   (cd "$work" && dpkg-source --no-check -x "$dsc" qemu) > "$work/unpack.log" 2>&1 \
     || { tail -5 "$work/unpack.log" >&2; die "dpkg-source -x failed"; }
-  rm -rf "$work/dl"
-  (cd "$src" && patch -p1 --forward --quiet < "$here/qemu/tse.patch") || die "emu/qemu/tse.patch does not apply to qemu $version"
   touch "$src/.tse-unpacked"
+fi
+# emu/qemu/tse.patch, as it is: the one applied before is taken back first, so that only the
+# files the two touch change (and are compiled again).
+if ! cmp -s "$here/qemu/tse.patch" "$src/.tse-patch"; then
+  if [ -f "$src/.tse-patch" ]; then
+    (cd "$src" && patch -R -p1 --quiet < .tse-patch) || die "cannot take back the previous emu/qemu/tse.patch (--clean starts afresh)"
+  fi
+  (cd "$src" && patch -p1 --forward --quiet < "$here/qemu/tse.patch") || die "emu/qemu/tse.patch does not apply to qemu $version"
+  cp "$here/qemu/tse.patch" "$src/.tse-patch"
 fi
 
 # ---- our models: copied only where their contents changed (ninja then rebuilds just those) ----
@@ -172,15 +189,19 @@ cmp -s "$here/qemu/arm-softmmu.mak" "$src/configs/devices/arm-softmmu/default.ma
 for tool in meson ninja pkg-config cc; do
   command -v $tool >/dev/null || die "$tool missing: run scripts/setup.sh"
 done
-if [ ! -f "$bld/build.ninja" ]; then
+# arm-softmmu only, nothing QEMU would build by default, no edk2 blobs (Debian's tarball has
+# none).  (QEMU's QOM cast checks stay on: without them a cast to a class with interfaces loses
+# its cache and the core's class lookups cost more, not less.)
+configure_args=(--target-list=arm-softmmu --without-default-features --without-default-devices
+                --disable-install-blobs --enable-fdt=system --disable-docs --audio-drv-list=)
+if [ ! -f "$bld/build.ninja" ] || [ "$(cat "$bld/.tse-configure" 2>/dev/null)" != "${configure_args[*]}" ]; then
   rm -rf "$bld"
   mkdir -p "$bld"
   say "configuring (arm-softmmu, no default features or devices)"
   t0=$(date +%s)
-  (cd "$bld" && "$src/configure" --target-list=arm-softmmu --without-default-features \
-     --without-default-devices --disable-install-blobs --enable-fdt=system \
-     --disable-docs --audio-drv-list= ) > "$work/configure.log" 2>&1 \
+  (cd "$bld" && "$src/configure" "${configure_args[@]}") > "$work/configure.log" 2>&1 \
     || { tail -20 "$work/configure.log" >&2; die "configure failed (log: $work/configure.log)"; }
+  echo "${configure_args[*]}" > "$bld/.tse-configure"
   say "configured in $(( $(date +%s) - t0 )) s"
 fi
 say "building qemu-system-arm (-j$jobs; log: $work/build.log)"

@@ -1,10 +1,8 @@
 /*
- * can-host-chardev: a QEMU CAN bus (-object can-bus) bridged to a character device, in the
- * place can-host-socketcan takes where the host kernel has SocketCAN:
- *
- *   -object can-bus,id=canbus0
- *   -chardev socket,id=can0,path=/tmp/can.sock,server=on,wait=off
- *   -object can-host-chardev,id=canhost0,canbus=canbus0,chardev=can0,bitrate=500000
+ * can-host-chardev: a QEMU CAN bus bridged to a character device, in the place can-host-socketcan
+ * takes where the host kernel has SocketCAN.  QEMU 7.2 accepts only the object types of its QAPI
+ * schema on -object, so the machine creates it (tse_f407.c: -M tse-f407,can-chardev=ID,bitrate=B
+ * with -chardev socket,id=ID,...).
  *
  * The byte stream carries one 16-byte record a frame, both ways, little-endian:
  *   u32 can_id   SocketCAN's layout: bit 31 extended, bit 30 RTR, bit 29 error frame; the
@@ -35,7 +33,7 @@
 #include "qapi/error.h"
 #include "qom/object_interfaces.h"
 #include "chardev/char-fe.h"
-#include "sysemu/sysemu.h"
+#include "qapi/visitor.h"
 #include "net/can_emu.h"
 #include "net/can_host.h"
 #include "tse_f407.h"
@@ -52,7 +50,6 @@ struct CanHostChardev {
     uint32_t bitrate;
     CharBackend chr;
     bool connected;
-    Notifier init_done;
 
     uint8_t partial[RECORD];
     unsigned partial_len;
@@ -239,36 +236,24 @@ static CanBusClientInfo bus_client_info = {
 
 /* ---- object ---- */
 
-/* -object is created before -chardev: the chardev is looked up once the machine is built. */
-static void bind_chardev(Notifier *n, void *data)
-{
-    CanHostChardev *c = container_of(n, CanHostChardev, init_done);
-    Chardev *chr = qemu_chr_find(c->chardev_id);
-    if (!chr) {
-        error_report("can-host-chardev: no chardev '%s'", c->chardev_id);
-        exit(1);
-    }
-    if (!qemu_chr_fe_init(&c->chr, chr, &error_fatal)) {
-        exit(1);
-    }
-    qemu_chr_fe_set_handlers(&c->chr, chr_can_read, chr_read, chr_event, NULL, c, NULL, true);
-}
-
 static void chardev_connect(CanHostState *ch, Error **errp)
 {
     CanHostChardev *c = CAN_HOST_CHARDEV(ch);
-    if (!c->chardev_id) {
-        error_setg(errp, "can-host-chardev: property 'chardev' not set");
+    Chardev *chr = c->chardev_id ? qemu_chr_find(c->chardev_id) : NULL;
+    if (!chr) {
+        error_setg(errp, "can-host-chardev: no chardev '%s'", c->chardev_id ? c->chardev_id : "");
         return;
     }
     if (c->bitrate == 0) {
         error_setg(errp, "can-host-chardev: bitrate must not be 0");
         return;
     }
+    if (!qemu_chr_fe_init(&c->chr, chr, errp)) {
+        return;
+    }
     ch->bus_client.info = &bus_client_info;
     c->timer = timer_new_ns(QEMU_CLOCK_VIRTUAL, deliver, c);
-    c->init_done.notify = bind_chardev;
-    qemu_add_machine_init_done_notifier(&c->init_done);
+    qemu_chr_fe_set_handlers(&c->chr, chr_can_read, chr_read, chr_event, NULL, c, NULL, true);
 }
 
 static void chardev_disconnect(CanHostState *ch)

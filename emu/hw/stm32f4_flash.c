@@ -144,6 +144,7 @@ static void finish_op(Stm32f4FlashState *s, bool cut)
     }
     s->op = OP_NONE;
     s->sr &= ~SR_BSY;
+    s->cr &= ~CR_STRT;
     timer_del(s->timer);
     update_irq(s);
 }
@@ -276,6 +277,9 @@ static MemTxResult flash_reg_write(void *opaque, hwaddr addr, uint64_t val, unsi
         s->cr = (v & (CR_WRITABLE | CR_LOCK));
         if (v & CR_STRT) {
             start_erase(s);
+            if (s->sr & SR_BSY) {
+                s->cr |= CR_STRT; /* until BSY clears */
+            }
         }
         update_irq(s);
         break;

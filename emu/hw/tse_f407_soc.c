@@ -26,6 +26,7 @@
 #include "hw/misc/unimp.h"
 #include "hw/char/stm32f2xx_usart.h"
 #include "sysemu/sysemu.h"
+#include "hw/core/cpu.h"
 #include "tse_f407_soc.h"
 
 #define FLASH_BASE 0x08000000
@@ -89,6 +90,36 @@ static void map_gated(TseF407SocState *s, int gate, const char *name, DeviceStat
     memory_region_set_enabled(mr, false);
     qdev_connect_gpio_out_named(s->rcc, rcc_group, line,
                                 qdev_get_gpio_in_named(DEVICE(s), "gate", gate));
+}
+
+/* ---- the core's interrupt line ---- */
+
+/*
+ * With wfi-nop (the default) the core never sleeps: its interrupt request stays asserted, so WFI
+ * finds "work" and returns at once (the architecture allows WFI to be a no-op; whether an
+ * exception is taken is still the NVIC's decision, asked at every new request).  QEMU wakes a
+ * sleeping core through its main loop thread, two thread hand-overs an interrupt: at the
+ * firmware's 200 kHz step interrupt that holds virtual time to about a tenth of real time,
+ * whereas a core that never sleeps takes its timers in its own thread (icount) and runs ahead
+ * of real time, which -icount align=on then paces.
+ */
+static void core_irq_in(void *opaque, int n, int level)
+{
+    TseF407SocState *s = opaque;
+    CPUState *cs = CPU(s->armv7m.cpu);
+    if (level || s->wfi_nop) {
+        cpu_interrupt(cs, CPU_INTERRUPT_HARD);
+    } else {
+        cpu_reset_interrupt(cs, CPU_INTERRUPT_HARD);
+    }
+}
+
+void tse_f407_soc_after_cpu_reset(void *opaque)
+{
+    TseF407SocState *s = opaque;
+    if (s->wfi_nop) {
+        cpu_interrupt(CPU(s->armv7m.cpu), CPU_INTERRUPT_HARD);
+    }
 }
 
 /* ---- power cycle ---- */
@@ -178,6 +209,8 @@ static bool make_core(TseF407SocState *s, Error **errp)
     }
     qdev_connect_gpio_out_named(armv7m, "SYSRESETREQ", 0,
                                 qdev_get_gpio_in_named(s->rcc, RCC_GPIO_RESET, RCC_RESET_SOFTWARE));
+    /* The NVIC's interrupt line to the core passes through core_irq (see there). */
+    sysbus_connect_irq(SYS_BUS_DEVICE(&s->armv7m.nvic), 0, qdev_get_gpio_in_named(DEVICE(s), "core-irq", 0));
     return true;
 }
 
@@ -245,6 +278,7 @@ static bool make_peripherals(TseF407SocState *s, Error **errp)
     if (s->canbus) {
         object_property_set_link(OBJECT(s->can1), "canbus", OBJECT(s->canbus), &error_abort);
     }
+    qdev_prop_set_uint32(s->can1, "bus-bitrate", s->bitrate);
     qdev_connect_clock_in(s->can1, "pclk", qdev_get_clock_out(s->rcc, RCC_CLK_PCLK1));
     if (!sysbus_realize_and_unref(SYS_BUS_DEVICE(s->can1), errp)) {
         return false;
@@ -311,11 +345,14 @@ static void soc_init(Object *obj)
     s->refclk = qdev_init_clock_in(DEVICE(obj), "refclk", NULL, NULL, 0);
     qdev_init_gpio_in_named(DEVICE(obj), gate_in, "gate", TSE_F407_NUM_GATES);
     qdev_init_gpio_in_named(DEVICE(obj), power_cycle_in, SOC_IN_POWER, 1);
+    qdev_init_gpio_in_named(DEVICE(obj), core_irq_in, "core-irq", 1);
 }
 
 static Property soc_properties[] = {
     DEFINE_PROP_STRING("cpu-type", TseF407SocState, cpu_type),
     DEFINE_PROP_LINK("canbus", TseF407SocState, canbus, TYPE_CAN_BUS, CanBusState *),
+    DEFINE_PROP_UINT32("bitrate", TseF407SocState, bitrate, 500000),
+    DEFINE_PROP_BOOL("wfi-nop", TseF407SocState, wfi_nop, true),
     DEFINE_PROP_END_OF_LIST(),
 };
 

@@ -36,6 +36,12 @@ struct TseF407SocState {
     /* properties */
     char *cpu_type;
     CanBusState *canbus;
+    uint32_t bitrate;
+    bool wfi_nop;
 };
+
+/* Re-asserts the core's interrupt request after QEMU's core reset cleared it (wfi-nop): the
+ * board registers it as a reset handler after the core's. */
+void tse_f407_soc_after_cpu_reset(void *opaque);
 
 #endif
