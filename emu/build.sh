@@ -113,7 +113,7 @@ resolve_version() {
   say "asking the archive for QEMU's source package (apt-get update, private lists in $apt_dir)"
   apt-get "${apt_opts[@]}" -q update > "$apt_dir/log" 2>&1 || true
   local v
-  v=$(apt-cache "${apt_opts[@]}" showsrc qemu 2>>"$apt_dir/log" | sed -n 's/^Version: //p' | sort -V | tail -1)
+  v=$({ apt-cache "${apt_opts[@]}" showsrc qemu 2>>"$apt_dir/log" || true; } | sed -n 's/^Version: //p' | sort -V | tail -1)
   [ -n "$v" ] || fetch_failed "no source package 'qemu' in the archive (network, or no deb-src index)"
   echo "$v" > "$version_file"
 }
@@ -221,5 +221,7 @@ cp "$bld/qemu-system-arm" "$out.tmp"
 strip "$out.tmp" 2>/dev/null || true
 mv "$out.tmp" "$out"
 printf 'qemu %s\nemu inputs %s\nbuilt %s\n' "$version" "$(emu_inputs_hash)" "$(date -u +%FT%TZ)" > "$cache/$key/BUILD-INFO"
+# The four binaries built last stay (other branches' models), older ones go.
+(cd "$cache" && ls -dt -- */ | sed 's#/$##' | grep -E '^[0-9a-f]{16}$' | tail -n +5 | xargs -r rm -rf --)
 say "$(du -h "$out" | cut -f1) $out"
 echo "$out"

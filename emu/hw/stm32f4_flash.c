@@ -15,8 +15,8 @@
  * - Programming (PG): a store into the array while PG is set is BSY for 16 us, then the word
  *   holds old AND new: programming only clears bits (RM0090 3.5.4), so programming a word that
  *   is not erased leaves bits that should have risen at 0 and the read-back differs.  A store
- *   whose size is not PSIZE's sets PGPERR, a misaligned one PGAERR, a store without PG (or with
- *   an error flag still set) PGSERR; none of them programs.  A store or a CR write while BSY
+ *   whose size is not PSIZE's sets PGPERR, a misaligned one PGAERR, a store without PG (or
+ *   while CR is locked) PGSERR; none of them programs.  A store or a CR write while BSY
  *   waits for the operation to end, as the part stalls the bus (here: the operation completes
  *   at once).
  * - SR: EOP and the error flags are cleared by writing 1; the flash interrupt (EOPIE, ERRIE).
@@ -177,10 +177,6 @@ static int64_t erase_ns(Stm32f4FlashState *s, uint32_t bytes)
 
 static void start_erase(Stm32f4FlashState *s)
 {
-    if (s->sr & (SR_PGAERR | SR_PGPERR | SR_PGSERR)) {
-        s->sr |= SR_PGSERR;
-        return;
-    }
     if (s->cr & CR_MER) {
         int64_t ns = 0;
         for (int i = 0; i < NUM_SECTORS; ++i) {
@@ -312,7 +308,7 @@ static void flash_array_write(void *opaque, hwaddr addr, uint64_t val, unsigned 
     if (s->sr & SR_BSY) {
         finish_op(s, false); /* the store waits for the operation to end */
     }
-    if (!(s->cr & CR_PG) || (s->cr & CR_LOCK) || (s->sr & (SR_PGAERR | SR_PGPERR | SR_PGSERR))) {
+    if (!(s->cr & CR_PG) || (s->cr & CR_LOCK)) {
         s->sr |= SR_PGSERR;
     } else if (size != psize) {
         s->sr |= SR_PGPERR;
