@@ -162,6 +162,26 @@ class BoardEmu(unittest.TestCase):
         self.assertGreater(min(rig), 0.2, "the home pose is above the switches")
         self.assertEqual(em.rig("log"), ["end"], "steps that broke the drivers' pulse or DIR timing")
 
+    def test_short_pulses_flagged(self):
+        """STEP pulses shorter than the drivers take (step_pulse_ns 1000 against the rig's
+        2000) are flagged with their width, the same every time (virtual time), and missed:
+        the slides do not move."""
+        em = self.start()
+        c = self.controller(em)
+        self.assertEqual(c.params.set("step_pulse_ns", 1000), 1000)
+        c.enable()
+        c.home(wait=False)
+        self.wait_virtual(em, 0.3)
+        log = em.rig("log")
+        self.assertEqual(log[-1], "end")
+        pulses = [line.split() for line in log if line.startswith("pulse ")]
+        self.assertGreater(len(pulses), 100, log[:5])
+        widths = {int(p[3]) for p in pulses}
+        self.assertEqual(len(widths), 1, f"pulse widths {sorted(widths)}")
+        self.assertTrue(1000 <= widths.pop() < 2000)
+        self.assertEqual({p[2] for p in pulses}, {"1", "2", "3", "4", "5", "6"})
+        self.assertEqual(em.slides(), [0.25] * 6)
+
     def test_param_save_survives_power_cycle(self):
         """A parameter set and saved is there after a power cycle (the rig's reset) and after
         the emulator itself restarts on the same flash file; one set but not saved is not."""
