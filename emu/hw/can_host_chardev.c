@@ -68,8 +68,7 @@ struct CanHostChardev {
 
 static uint32_t frame_bits(const qemu_can_frame *f)
 {
-    const uint32_t len = (f->can_id & QEMU_CAN_RTR_FLAG) ? 0 : f->can_dlc;
-    return ((f->can_id & QEMU_CAN_EFF_FLAG) ? 64 : 44) + 8 * len + 3;
+    return tse_can_frame_bits(f->can_id & QEMU_CAN_EFF_FLAG, f->can_id & QEMU_CAN_RTR_FLAG, f->can_dlc);
 }
 
 static void deliver(void *opaque)

@@ -412,8 +412,7 @@ static void release_box(Stm32f4BxcanState *s, int m, bool ok)
 
 static uint32_t frame_bits(const Mailbox *m)
 {
-    const uint32_t len = (m->ir & IR_RTR) ? 0 : MIN(m->dtr & 0xF, 8);
-    return ((m->ir & IR_IDE) ? 64 : 44) + 8 * len + 3;
+    return tse_can_frame_bits(m->ir & IR_IDE, m->ir & IR_RTR, m->dtr & 0xF);
 }
 
 static void to_qemu_frame(const Mailbox *m, qemu_can_frame *f)

@@ -47,6 +47,14 @@ enum { RCC_RESET_SOFTWARE, RCC_RESET_IWDG, RCC_RESET_POWER_ON, RCC_RESET_PIN, RC
 #define EXTI_NUM_LINES 23
 #define EXTI_NUM_IRQS 14
 
+/* ---- CAN (stm32f4_bxcan.c, can_host_chardev.c) ---- */
+/* A frame's nominal length on the bus in bits, intermission included, without stuff bits:
+ * 44 + 8 x len bits standard, 64 + 8 x len extended, plus 3 (ISO 11898-1). */
+static inline uint32_t tse_can_frame_bits(bool extended, bool rtr, unsigned len)
+{
+    return (extended ? 64u : 44u) + 8u * (rtr ? 0u : (len > 8u ? 8u : len)) + 3u;
+}
+
 /* ---- bxCAN (stm32f4_bxcan.c) ---- */
 #define BXCAN_IN_RX_AF "rx-af" /* the CAN RX pin's alternate function (from GPIO "af") */
 #define BXCAN_IN_TX_AF "tx-af"
