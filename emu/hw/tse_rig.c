@@ -298,6 +298,16 @@ static void chr_read(void *opaque, const uint8_t *buf, int size)
     }
 }
 
+/* A client gone: what it left of a request is dropped, so the next client starts afresh. */
+static void chr_event(void *opaque, QEMUChrEvent event)
+{
+    TseRigState *s = opaque;
+    if (event == CHR_EVENT_CLOSED || event == CHR_EVENT_OPENED) {
+        s->line_len = 0;
+        s->line_overflow = false;
+    }
+}
+
 /* ---- configuration ---- */
 
 /* "X" (all six) or "X1,X2,...,X6", metres. */
@@ -338,7 +348,7 @@ static void rig_realize(DeviceState *dev, Error **errp)
         s->slide[k].dir_change = INT64_MIN / 2;
     }
     if (qemu_chr_fe_backend_connected(&s->chr)) {
-        qemu_chr_fe_set_handlers(&s->chr, chr_can_read, chr_read, NULL, NULL, s, NULL, true);
+        qemu_chr_fe_set_handlers(&s->chr, chr_can_read, chr_read, chr_event, NULL, s, NULL, true);
     }
 }
 

@@ -162,6 +162,23 @@ class BoardEmu(unittest.TestCase):
         self.assertGreater(min(rig), 0.2, "the home pose is above the switches")
         self.assertEqual(em.rig("log"), ["end"], "steps that broke the drivers' pulse or DIR timing")
 
+    def test_estop_chain(self):
+        """Opening the e-stop chain (PA8, EXTI8) latches estop at once, drives off; once it is
+        closed again CLEAR_FAULT returns to disabled."""
+        em = self.start()
+        c = self.controller(em)
+        c.enable()
+        self.assertTrue(c.status().enabled)
+        em.rig("estop open")
+        st = self.wait_virtual(em, 0.5, lambda e: (lambda s: s if s.state == "estop" else None)(c.status()),
+                               "estop state")
+        self.assertTrue(st.estop_open)
+        self.assertFalse(st.enabled)
+        em.rig("estop closed")
+        self.wait_virtual(em, 0.5, lambda e: not c.status().estop_open, "the chain seen closed")
+        c.clear()
+        self.wait_virtual(em, 0.5, lambda e: c.status().state == "disabled", "disabled after CLEAR_FAULT")
+
     def test_short_pulses_flagged(self):
         """STEP pulses shorter than the drivers take (step_pulse_ns 1000 against the rig's
         2000) are flagged with their width, the same every time (virtual time), and missed:
