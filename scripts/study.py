@@ -3,8 +3,11 @@
 
 Run through scripts/study.sh, which builds tse-kin and finds Debian's python3 with matplotlib.
 Every figure is tse-kin's; this script only chooses the designs, reads the CSV and draws.  The
-design's own k1, eta, k3, k4 and L (to mark it on the sweeps and size the margin maps) are read
-from its parameter file and confirmed against tse-kin before use.
+design's kinematic values (to label every line and figure, mark it on the sweeps and size the
+margin maps) are read from its parameter file over tse-kin's defaults (`tse-kin params`) and
+confirmed against tse-kin before use.  The paper's figures and the readings that try to explain
+them are printed and drawn only when the design is the paper's prototype (every kinematic value
+the default); every other label carries the design's own values.
 """
 import argparse
 import csv
@@ -14,10 +17,13 @@ import subprocess
 import sys
 import time
 
-# The paper's figures for the prototype (its sections V and VI), drawn beside ours.
-PAPER = {"haf": 11.487, "k1": 0.2647, "workspace": 0.28, "eta_deg": 30.0}
-# docs/kinematics.md's prototype: what a key the file leaves out is.
-DEFAULTS = {"L": 1.727, "k1": 0.2647, "eta_deg": 30.0, "k3": 0.0186, "k4": 0.11765}
+# The paper's figures for its prototype (its sections V and VI), drawn beside ours only when the
+# design is the prototype.
+PAPER = {"haf": 11.487, "workspace": 0.28}
+# The kinematic keys of a parameter file in SI (docs/kinematics.md); the file may give the angles
+# in degrees instead.  A key the file leaves out keeps tse-kin's default (`tse-kin params`).
+KIN_KEYS = ["L", "k1", "eta", "k3", "k4", "alpha_min", "alpha_max", "s_min", "s_max", "mu_min", "nu_min"]
+ANGLES = ["eta", "alpha_min", "alpha_max"]
 # Angles a file may give in radians or in degrees: both spellings are one parameter.
 SPELLINGS = {"eta": ("eta", "eta_deg"), "eta_deg": ("eta", "eta_deg"),
              "alpha_min": ("alpha_min", "alpha_min_deg"), "alpha_min_deg": ("alpha_min", "alpha_min_deg"),
@@ -32,16 +38,26 @@ PROFILE_VARIANTS = {"k1": [0.15, 0.4, 0.7, 1.0], "eta_deg": [-60.0, -30.0, 0.0, 
 # The slide angles of the paper's figure of internal singularities (its Fig. 7: a negative and a
 # positive one; 60 degrees is where it sees the singular behaviour begin).
 MARGIN_ETAS = [-30.0, 60.0]
-PITCH_DEG = 20.0   # the tilted workspace (the paper tilts by 75 degrees; see docs/analysis.md)
-FREE_STROKE = 10.0  # s_max [m] that no design of the k1 sweep reaches: the stroke not binding
+PITCH_DEG = 20.0   # the tilted workspace drawn (the paper tilts by 75 degrees; see docs/analysis.md)
+PAPER_PITCH_DEG = 75.0  # the paper's Fig. 8-d tilt, counted only: the plate nearly in a scissor's plane
+# The stroke taken out of the picture: s_max = FREE_STROKE_L L / cos(eta), ten times the scale of a
+# slide's travel for a scissor of length L at the slide angle eta (on the axis s = l0 cos(alpha) /
+# cos(eta) with l0 <= L), so that no design of the k1 sweep reaches it.
+FREE_STROKE_L = 10.0
+# The stroke readings of the workspace: the design's s_max times these (the prototype's 0.9 m gives
+# 0.8, 0.85, 0.95 and 1 m, where the paper's 0.28 is found).
+STROKE_SCALES = [8 / 9, 8.5 / 9, 9.5 / 9, 10 / 9]
 
 # Slide angles whose grid points are sorted by status: why the workspace changes with k2.
 STATUS_ETAS = [float(e) for e in range(-80, 81, 10)]
 STATUSES = ["ok", "unreachable", "below", "alpha", "stroke", "singular", "degenerate", "noconverge"]
 
-FULL = {"grid": "16,24,32", "designs": 50, "draw": "21,60,41", "map": 161, "heights": 100, "status_etas": STATUS_ETAS}
+# "volume": the grid the workspace's volume is quoted on, finer than the paper's (whose cells,
+# 5.8 cm x 5.6 cm with 23 cm of arc at the rim for the prototype, put its volume 7 % high).
+FULL = {"grid": "16,24,32", "designs": 50, "draw": "21,60,41", "map": 161, "heights": 100, "status_etas": STATUS_ETAS,
+        "volume": "31,72,61"}
 QUICK = {"grid": "4,6,5", "designs": 5, "draw": "4,8,5", "map": 15, "heights": 8,
-         "status_etas": [-60.0, 0.0, 60.0]}
+         "status_etas": [-60.0, 0.0, 60.0], "volume": "6,12,9"}
 
 
 def fail(msg, code=1):
@@ -86,19 +102,32 @@ def key_of(line):
     return body.split("=", 1)[0].strip()
 
 
-def design_values(text):
-    """The design's L, k1, eta_deg, k3, k4 from the file's text (tse-kin has read it already)."""
-    v = dict(DEFAULTS)
+def file_values(text):
+    """The kinematic values a parameter file's text sets, in SI (tse-kin has read it already)."""
+    v = {}
     for line in text.splitlines():
         k = key_of(line)
         if k is None:
             continue
-        val = line.lstrip("\ufeff").split("#", 1)[0].split("=", 1)[1].strip()
-        if k in ("L", "k1", "k3", "k4", "eta_deg"):
-            v[k] = float(val)
-        elif k == "eta":
-            v["eta_deg"] = math.degrees(float(val))
+        val = float(line.lstrip("\ufeff").split("#", 1)[0].split("=", 1)[1].strip())
+        if k in KIN_KEYS:
+            v[k] = val
+        elif k.endswith("_deg") and k[:-4] in ANGLES:
+            v[k[:-4]] = math.radians(val)
     return v
+
+
+def design_values(defaults, text):
+    """The design's kinematic values (defaults, then the file's), with the angles also in degrees."""
+    v = dict(defaults)
+    v.update(file_values(text))
+    for k in ANGLES:
+        v[k + "_deg"] = math.degrees(v[k])
+    return v
+
+
+def same(a, b):
+    return abs(a - b) <= 1e-12 * abs(b)
 
 
 def variant(base_text, key, value):
@@ -132,6 +161,11 @@ class Study:
             self.write(self.design_file, "")
         self.summary = []
         self.jobs = ["--jobs", str(a.jobs)] if a.jobs else []
+        self.name = os.path.basename(a.params) if a.params else "prototype"
+
+    @property
+    def free_stroke(self):
+        return FREE_STROKE_L * self.values["L"] / math.cos(self.values["eta"])
 
     def write(self, path, text):
         with open(path, "w", encoding="utf-8") as fh:
@@ -153,23 +187,46 @@ class Study:
         return table(text)
 
     # ------------------------------------------------------------------ the runs
+    def workspace_figures(self, path, grid, orientation=None):
+        """tse-kin workspace's summary: reachable points, total, fraction, volume [m^3]."""
+        args = ["workspace", "--params", path, "--grid", grid]
+        if orientation is not None:
+            args += ["--orientation", orientation]
+        last = self.kin.run(args).strip().splitlines()[-1].split(",")
+        reach, total = int(last[0]), int(last[1])
+        return reach, total, reach / total, float(last[3])
+
     def design(self):
         """The design's own figures, and its parameter values confirmed by tse-kin."""
-        self.values = design_values(self.base_text)
+        defaults = file_values(self.kin.run(["params"]))
+        missing = [k for k in KIN_KEYS if k not in defaults]
+        if missing:
+            fail(f"tse-kin params gives no {', '.join(missing)}")
+        self.values = design_values(defaults, self.base_text)
+        self.is_proto = all(same(self.values[k], defaults[k]) for k in KIN_KEYS)
         haf_text = self.kin.run(["haf", "--params", self.design_file])
-        self.write(os.path.join(self.csv, "haf.txt"), haf_text)  # tse-kin haf's own report, no header line
+        self.write(os.path.join(self.csv, "haf.txt"), haf_text)  # tse-kin haf's own report, its columns in a '#' line
         self.haf_mean = float(haf_text.strip().splitlines()[-1].split(",")[1])
-        ws = self.kin.run(["workspace", "--params", self.design_file, "--grid", self.a.grid])
-        reach, total = (int(x) for x in ws.strip().splitlines()[-1].split(",")[:2])
-        self.ws = reach / total
-        # A one-design sweep at the value read must be the design itself (haf is to the last digit).
-        for name, key, _, _ in SWEEPS:
+        self.ws_reach, self.ws_total, self.ws, self.ws_volume_grid = self.workspace_figures(self.design_file,
+                                                                                            self.a.grid)
+        self.volume = self.workspace_figures(self.design_file, self.a.volume)[3]
+        # A one-design sweep at the value read must be the design itself, to the last digit.
+        for key in KIN_KEYS:
             v = self.values[key]
             row = table(self.kin.run(["sweep", key, repr(v), repr(v), "1", "--params", self.design_file,
-                                      "--grid", "2,1,2"]))[0]
-            if not (row["haf"] == self.haf_mean or (row["haf"] != row["haf"] and self.haf_mean != self.haf_mean)):
-                fail(f"could not read {key} from the parameter file (read {v}; its HAF {row['haf']} is not "
-                     f"the design's {self.haf_mean})")
+                                      "--grid", self.a.grid]))[0]
+            got = (row["haf"], row["workspace"], row["volume_m3"])
+            want = (self.haf_mean, self.ws, self.ws_volume_grid)
+            if any(not (a == b or (a != a and b != b)) for a, b in zip(got, want)):
+                fail(f"could not read {key} from the parameter file (read {v!r}; the design's HAF, workspace and "
+                     f"volume {want} are not those of the design with {key} = {v!r}: {got})")
+
+    def label(self):
+        """The design in one line, for titles: its name and the values the study varies or is bound by."""
+        v = self.values
+        return (f"{self.name}: L = {v['L']:g} m, k1 = {v['k1']:g}, k2 = {v['eta_deg']:.4g} deg, k3 = {v['k3']:g}, "
+                f"k4 = {v['k4']:g}, stroke {v['s_min']:g} .. {v['s_max']:g} m, "
+                f"stops {v['alpha_min_deg']:.4g} .. {v['alpha_max_deg']:.4g} deg")
 
     def sweeps(self):
         n = self.a.designs
@@ -184,10 +241,10 @@ class Study:
         self.sweep_seconds = time.monotonic() - t0
         g = self.a.grid.replace(",", " x ")
         jobs = self.a.jobs or os.cpu_count()
-        self.note(f"study: the paper's study, 4 sweeps x {n} designs on the {g} grid "
+        self.note(f"study: 4 sweeps (k1, k2, k3, k4) x {n} designs on the {g} grid "
                   f"({jobs} threads): {self.sweep_seconds:.2f} s")
         # The stroke taken out of the picture: the workspace trend of k1 from the scissors alone.
-        free = self.params_file("free_stroke", "s_max", FREE_STROKE)
+        free = self.params_file("free_stroke", "s_max", self.free_stroke)
         lo, hi = min(0.1, self.values["k1"]), max(1.0, self.values["k1"])
         self.sweep["k1_free"] = self.save("sweep_k1_free_stroke.csv", self.kin.run(
             ["sweep", "k1", repr(lo), repr(hi), str(n), "--params", free, "--grid", self.a.grid] + self.jobs))
@@ -205,11 +262,14 @@ class Study:
                 self.variants[key].append((v, rows))
 
     def workspace(self):
-        self.points = {}
+        self.points, self.points_volume = {}, {}
         for name, pitch in (("level", 0.0), (f"pitch{PITCH_DEG:g}", PITCH_DEG)):
             o = f"0,{math.radians(pitch)!r},0"
-            self.points[name] = (pitch, self.save(f"points_{name}.csv", self.kin.run(
-                ["workspace", "--points", "--params", self.design_file, "--grid", self.a.draw, "--orientation", o])))
+            text = self.kin.run(["workspace", "--points", "--params", self.design_file, "--grid", self.a.draw,
+                                 "--orientation", o])
+            self.points[name] = (pitch, self.save(f"points_{name}.csv", text))
+            # Its last line: "# reachable,total,fraction,volume_m3: R,T,F,V[ (paper ...)]".
+            self.points_volume[name] = float(text.strip().splitlines()[-1].split(":", 1)[1].split(",")[3].split()[0])
         # Every point of the paper's grid by status, for a range of slide angles.
         lines = ["eta_deg," + ",".join(STATUSES)]
         self.status_k2 = []
@@ -221,9 +281,10 @@ class Study:
             lines.append(f"{eta:g}," + ",".join(str(c) for c in counts))
         self.write(os.path.join(self.csv, "status_k2.csv"), "\n".join(lines) + "\n")
         # The paper's own tilt, counted only: at 75 degrees the plate lies almost in a scissor's plane.
-        ws75 = self.kin.run(["workspace", "--params", self.design_file, "--grid", self.a.grid,
-                             "--orientation", f"0,{math.radians(75)!r},0"])
-        self.ws75 = ws75.strip().splitlines()[-1]
+        self.ws_tilted = self.workspace_figures(self.design_file, self.a.grid,
+                                                f"0,{math.radians(PAPER_PITCH_DEG)!r},0")
+        self.volume_tilted = self.workspace_figures(self.design_file, self.a.volume,
+                                                    f"0,{math.radians(PAPER_PITCH_DEG)!r},0")[3]
 
     def margins(self):
         L = self.values["L"]
@@ -331,17 +392,26 @@ class Study:
                   f"{near[0]}; the squared reading would need k1 = {lo:.4f} to give {PAPER['haf']}")
 
     def workspace_readings(self):
-        """The paper's 0.28 beside ours under the assumptions the paper leaves open: the stroke
-        (not given), the singularity margins (not used by the paper's test), the angle stops (its
-        prototype has them, its workspace test does not name them), the grid."""
+        """The workspace with one limit changed, to see which one bounds it: the grid, the
+        singularity margins, the angle stops, the stroke (for the prototype, the assumptions the
+        paper leaves open behind its 0.28: the stroke is not given, its workspace test names
+        neither the margins nor the stops)."""
+        v = self.values
+        free = self.free_stroke
+        strokes = sorted({float(f"{v['s_max'] * k:.4g}") for k in STROKE_SCALES} | {free})
         readings = [
-            ("ours (docs/kinematics.md: stroke 0 .. 0.9 m, stops, mu >= 0.05, nu >= 1e-3)", {}, self.a.grid),
+            (f"this design (stroke {v['s_min']:g} .. {v['s_max']:g} m, stops {v['alpha_min_deg']:.4g} .. "
+             f"{v['alpha_max_deg']:.4g} deg, mu >= {v['mu_min']:g}, nu >= {v['nu_min']:g})", {}, self.a.grid),
             ("on tse-kin workspace's default grid 21 x 36 x 41", {}, "21,36,41"),
             ("no singularity margins (mu_min = nu_min = 0)", {"mu_min": 0.0, "nu_min": 0.0}, self.a.grid),
             ("no angle stops (alpha 0.01 .. 89.99 deg)", {"alpha_min_deg": 0.01, "alpha_max_deg": 89.99},
              self.a.grid),
-        ] + [(f"stroke 0 .. {sm:g} m", {"s_max": sm}, self.a.grid) for sm in (0.8, 0.85, 0.95, 1.0, 10.0)]
-        self.note(f"workspace readings (paper: {PAPER['workspace']} for the prototype):")
+        ] + [(f"stroke {v['s_min']:g} .. {sm:.4g} m" + (" (not binding)" if sm == free else ""), {"s_max": sm},
+              self.a.grid) for sm in strokes if sm > v["s_min"]]
+        g = self.a.grid.replace(",", " x ")
+        self.note(f"workspace with one limit changed (fraction of the {g} grid's points, unless another grid is "
+                  f"named; volume on the same points)" + (f"; paper {PAPER['workspace']}" if self.is_proto else "")
+                  + ":")
         self.ws_table = []
         for n, (name, over, grid) in enumerate(readings):
             text = self.base_text
@@ -349,10 +419,9 @@ class Study:
                 text = variant(text, k, val)
             path = os.path.join(self.csv, "params", f"ws_reading_{n}.params")
             self.write(path, text)
-            last = self.kin.run(["workspace", "--params", path, "--grid", grid]).strip().splitlines()[-1]
-            reach, total = (int(x) for x in last.split(",")[:2])
-            self.ws_table.append((name, reach / total))
-            self.note(f"  {reach / total:8.4f}  {name}")
+            reach, total, frac, vol = self.workspace_figures(path, grid)
+            self.ws_table.append((name, frac, vol))
+            self.note(f"  {frac:8.4f}  {vol:8.4g} m^3  {name}")
 
     def stop_heights(self):
         """Where the plate's centre is on the axis when a scissor is at a stop.  The paper's 0.324 and
@@ -383,31 +452,53 @@ class Study:
                   f"scissor heights L sin(alpha) are {z[0]:.4f} and {z[-1]:.4f} m")
 
     # ------------------------------------------------------------------ the numbers of the report
+    def resolution(self, grid):
+        """The cells of tse-kin workspace's volume on a grid: r, Z and the arc at the rim [m]."""
+        nr, nphi, nz = (int(x) for x in grid.split(","))
+        L = self.values["L"]
+        return f"cells {L / (2 * (nr - 1)):.3g} m in r, {L / (nz - 1):.3g} m in Z, {math.pi * L / nphi:.3g} m of arc at the rim"
+
     def numbers(self):
         v = self.values
         self.note(f"design: L = {v['L']:g} m, k1 = {v['k1']:g}, k2 = eta = {v['eta_deg']:g} deg, "
-                  f"k3 = {v['k3']:g}, k4 = {v['k4']:g}")
-        self.note(f"HAF (mean over tse-kin haf's heights) {self.haf_mean:.4f}; paper {PAPER['haf']} for the prototype")
-        self.note(f"workspace on the {self.a.grid} grid {self.ws:.4f}; paper {PAPER['workspace']} for the prototype; "
-                  f"pitch 75 deg: {self.ws75}")
+                  f"k3 = {v['k3']:g}, k4 = {v['k4']:g}; stroke {v['s_min']:g} .. {v['s_max']:g} m, scissor stops "
+                  f"{v['alpha_min_deg']:.4g} .. {v['alpha_max_deg']:.4g} deg, margins mu >= {v['mu_min']:g}, "
+                  f"nu >= {v['nu_min']:g}" + (" (the paper's prototype)" if self.is_proto else ""))
+        self.note(f"HAF (mean over tse-kin haf's heights) {self.haf_mean:.4f}"
+                  + (f"; paper {PAPER['haf']}" if self.is_proto else ""))
+        g = self.a.grid.replace(",", " x ")
+        self.note(f"workspace, plate level: {self.ws_reach} of the {self.ws_total} points of the {g} grid reachable, "
+                  f"fraction {self.ws:.4f}" + (f"; paper {PAPER['workspace']}" if self.is_proto else ""))
+        cyl = math.pi * v["L"] ** 3 / 4
+        self.note(f"workspace volume, plate level: {self.volume:.4g} m^3 ({100 * self.volume / cyl:.1f} % of the "
+                  f"cylinder r <= L/2, 0 <= Z <= L, {cyl:.4g} m^3): the reachable volume of the plate's centre, the "
+                  f"sum of the cells of the reachable points of a {self.a.volume.replace(',', ' x ')} grid "
+                  f"({self.resolution(self.a.volume)}); {self.ws_volume_grid:.4g} m^3 on the {g} grid "
+                  f"({self.resolution(self.a.grid)})")
+        r75, t75, f75, _ = self.ws_tilted
+        self.note(f"workspace, plate pitched {PAPER_PITCH_DEG:g} deg"
+                  + (" (the paper's Fig. 8-d)" if self.is_proto else "")
+                  + f": {r75} of the {t75} points of the {g} grid reachable, fraction {f75:.4f}; volume "
+                  f"{self.volume_tilted:.4g} m^3 ({self.a.volume.replace(',', ' x ')} grid)")
         z = [r["z"] for r in self.profile]
         self.note(f"heights of the alpha stops: {z[0]:.4f} m .. {z[-1]:.4f} m")
         for name, (pitch, rows) in self.points.items():
             ok = [r for r in rows if r["status"] == "ok"]
             if ok:
                 xs, ys = [r["x"] for r in ok], [r["y"] for r in ok]
-                self.note(f"reachable points, plate pitched {pitch:g} deg ({self.a.draw} grid): {len(ok)} of "
-                          f"{len(rows)}; X {min(xs):.3f} .. {max(xs):.3f} m ({max(xs) - min(xs):.2f} m), "
+                self.note(f"reachable points, plate pitched {pitch:g} deg ({self.a.draw.replace(',', ' x ')} grid): "
+                          f"{len(ok)} of {len(rows)}; X {min(xs):.3f} .. {max(xs):.3f} m ({max(xs) - min(xs):.2f} m), "
                           f"Y {min(ys):.3f} .. {max(ys):.3f} m ({max(ys) - min(ys):.2f} m)")
         k2 = [r for r in self.sweep["k2"] if r["haf"] == r["haf"]]
         best = max(k2, key=lambda r: r["haf"])
         self.note(f"k2: HAF largest at k2 = {best['value']:.3g} deg ({best['haf']:.4f}); "
-                  + ", ".join(f"k2 = {r['value']:.3g}: HAF {fmt(r['haf'])} ws {fmt(r['workspace'])}"
+                  + ", ".join(f"k2 = {r['value']:.3g}: HAF {fmt(r['haf'])} workspace {fmt(r['workspace'])}"
                               for r in (k2[0], k2[len(k2) // 4], k2[len(k2) // 2], k2[3 * len(k2) // 4], k2[-1])))
         for key in ("k1", "k1_free", "k3", "k4"):
             rows = [r for r in self.sweep[key] if r["haf"] == r["haf"]]
             wmax = max(rows, key=lambda r: r["workspace"])
-            self.note(f"{key}: HAF {fmt(rows[0]['haf'])} .. {fmt(rows[-1]['haf'])}, workspace "
+            name = f"k1 with the stroke not binding (s_max = {self.free_stroke:.3g} m)" if key == "k1_free" else key
+            self.note(f"{name}: HAF {fmt(rows[0]['haf'])} .. {fmt(rows[-1]['haf'])}, workspace "
                       f"{fmt(rows[0]['workspace'])} .. {fmt(rows[-1]['workspace'])} (largest {fmt(wmax['workspace'])} "
                       f"at {fmt(wmax['value'])}) over {key.split('_')[0]} = {fmt(rows[0]['value'])} .. "
                       f"{fmt(rows[-1]['value'])}")
@@ -441,21 +532,46 @@ def draw(st):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from matplotlib.text import Text
+
     out = st.out
     v = st.values
-    is_proto = all(abs(v[k] - DEFAULTS[k]) < 1e-12 for k in DEFAULTS)
+    paper = st.is_proto
+
+    def title(text, ref=None):
+        """A figure's title: what it shows, the paper's figure it answers (the prototype only), and
+        the design on a second line."""
+        return text + (f" (paper {ref})" if paper and ref else "") + "\n" + st.label()
 
     def save(fig, name, top=1.0):
         fig.tight_layout(rect=(0, 0, 1, top))  # top < 1 leaves room for a suptitle
-        fig.savefig(os.path.join(out, name), dpi=100, bbox_inches="tight")
+        # Every title, axis label and legend entry also as the PNG's Description (before drawing,
+        # tick labels are still empty): what the figure says, readable without looking at it.
+        said = [t.get_text() for t in fig.findobj(Text) if t.get_text()]
+        fig.savefig(os.path.join(out, name), dpi=100, bbox_inches="tight",
+                    metadata={"Title": name, "Description": "\n".join(said)})
         plt.close(fig)
 
     def col(rows, key):
         return [r[key] for r in rows]
 
-    def sweep_plot(name, key, label, fig_title, paper_y=None, extra=None):
+    grid = st.a.grid.replace(",", " x ")
+
+    def volume_axis(ax, rows, extra=None, short=False):
+        """The reachable volume on a right-hand axis: the size, which the fraction is not."""
+        ax2 = ax.twinx()
+        ax2.plot(col(rows, "value"), col(rows, "volume_m3"), "-.", color="C1", lw=1,
+                 label="reachable volume (right)")
+        if extra:
+            ax2.plot(col(extra, "value"), col(extra, "volume_m3"), ":", color="C1", lw=1,
+                     label="reachable volume, stroke not binding (right)")
+        ax2.set_ylabel("volume [m^3]" if short else f"reachable volume [m^3] ({grid} grid)", color="C1")
+        ax2.set_ylim(bottom=0)
+        return ax2
+
+    def sweep_plot(name, key, label, fig_title, ref, extra=None):
         rows = st.sweep[name]
-        fig, ax = plt.subplots(figsize=(6, 4))
+        fig, ax = plt.subplots(figsize=(6.5, 4.3))
         ax.plot(col(rows, "value"), col(rows, key), "-", color="C0", label="tse-kin sweep")
         if extra:
             ax.plot(col(extra[0], "value"), col(extra[0], key), "--", color="C2", label=extra[1])
@@ -463,21 +579,25 @@ def draw(st):
         y = st.haf_mean if key == "haf" else st.ws
         ax.axvline(x, color="C3", lw=0.8, ls=":")
         ax.plot([x], [y], "o", color="C3", label=f"design under study ({fmt(y)})")
-        if paper_y is not None and is_proto:
-            ax.plot([PAPER[SWEEP_KEY[name]] if SWEEP_KEY[name] in PAPER else x], [paper_y], "kx", ms=9, mew=2,
-                    label=f"paper, prototype ({paper_y})")
+        if paper:
+            ax.plot([x], [PAPER[key]], "kx", ms=9, mew=2, label=f"paper, prototype ({PAPER[key]})")
+        handles, labels = ax.get_legend_handles_labels()
+        if key == "workspace":
+            ax2 = volume_axis(ax, rows, extra[0] if extra else None)
+            h2, l2 = ax2.get_legend_handles_labels()
+            handles, labels = handles + h2, labels + l2
         ax.set_xlabel(label)
-        ax.set_ylabel("HAF" if key == "haf" else "workspace fraction")
-        ax.set_title(fig_title, fontsize=10)
+        ax.set_ylabel("HAF" if key == "haf" else f"workspace fraction ({grid} grid's points)")
+        ax.set_title(title(fig_title, ref), fontsize=9)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
+        ax.legend(handles, labels, fontsize=8)
         save(fig, f"{key}_{name}.png")
 
-    sweep_plot("k1", "haf", "k1 = l0 / L", "HAF against k1 (paper Fig. 10)", PAPER["haf"])
-    sweep_plot("k1", "workspace", "k1 = l0 / L", "Workspace against k1 (paper Fig. 11)", PAPER["workspace"],
-               extra=(st.sweep["k1_free"], f"stroke not binding (s_max = {FREE_STROKE:g} m)"))
-    sweep_plot("k2", "haf", "k2 = eta [deg]", "HAF against k2 (paper Fig. 12)", PAPER["haf"])
-    sweep_plot("k2", "workspace", "k2 = eta [deg]", "Workspace against k2 (paper Fig. 13)", PAPER["workspace"])
+    sweep_plot("k1", "haf", "k1 = l0 / L", "HAF against k1", "Fig. 10")
+    sweep_plot("k1", "workspace", "k1 = l0 / L", "Workspace against k1", "Fig. 11",
+               extra=(st.sweep["k1_free"], f"stroke not binding (s_max = {st.free_stroke:.3g} m)"))
+    sweep_plot("k2", "haf", "k2 = eta [deg]", "HAF against k2", "Fig. 12")
+    sweep_plot("k2", "workspace", "k2 = eta [deg]", "Workspace against k2", "Fig. 13")
 
     fig, axes = plt.subplots(2, 2, figsize=(9, 6))
     for c, (name, label) in enumerate((("k3", "k3 = r_act / L"), ("k4", "k4 = r_top / L"))):
@@ -487,11 +607,14 @@ def draw(st):
             ax.plot(col(rows, "value"), col(rows, key), "-")
             ax.axvline(v[name], color="C3", lw=0.8, ls=":")
             ax.plot([v[name]], [st.haf_mean if key == "haf" else st.ws], "o", color="C3")
+            if key == "workspace":
+                volume_axis(ax, rows, short=True)
             ax.set_xlabel(label)
             ax.set_ylabel("HAF" if key == "haf" else "workspace fraction")
             ax.grid(alpha=0.3)
-    fig.suptitle("HAF and workspace against k3 and k4 (the paper states these trends in words)", fontsize=10)
-    save(fig, "sweeps_k3_k4.png", top=0.94)
+    fig.suptitle(title("HAF and workspace (solid; reachable volume dash-dotted, right) against k3 and k4"
+                       + (" (the paper states these trends in words)" if paper else "")), fontsize=10)
+    save(fig, "sweeps_k3_k4.png", top=0.93)
 
     # Singular values along the axis (the paper's singular-value figures).
     rows = [r for r in st.profile if r["sigma_z"] == r["sigma_z"]]
@@ -503,12 +626,12 @@ def draw(st):
     ax.set_yscale("log")
     ax.set_xlabel("Z [m] (plate on the axis, level)")
     ax.set_ylabel("singular values of dp/dq")
-    ax.set_title("Singular values and sigma_z against height (cf. paper Fig. 9)", fontsize=10)
+    ax.set_title(title("Singular values and sigma_z against height", "Fig. 9"), fontsize=9)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8, ncol=2)
     save(fig, "singular_values.png")
 
-    def variant_plot(key, label, fname, title, all_sv=False):
+    def variant_plot(key, label, fname, text, all_sv=False, ref=None):
         fig, ax = plt.subplots(figsize=(6.5, 4.5))
         for n, (val, rows) in enumerate(st.variants[key]):
             rows = [r for r in rows if r["sigma_z"] == r["sigma_z"]]
@@ -526,10 +649,10 @@ def draw(st):
         ax.set_ylabel("sigma_z (solid)" + ("; all six singular values (dotted)" if all_sv else ""))
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
-        ax.set_title(title, fontsize=10)
+        ax.set_title(title(text, ref), fontsize=9)
         save(fig, fname)
 
-    variant_plot("k1", "k1", "sigma_z_k1.png", "sigma_z against height for several k1 (paper Fig. 9)")
+    variant_plot("k1", "k1", "sigma_z_k1.png", "sigma_z against height for several k1", ref="Fig. 9")
     variant_plot("eta_deg", "k2", "profile_k2.png", "sigma_z against height for several k2 [deg]")
     variant_plot("k3", "k3", "profile_k3.png", "Singular values against height for several k3", all_sv=True)
     variant_plot("k4", "k4", "profile_k4.png", "Singular values against height for several k4", all_sv=True)
@@ -544,8 +667,9 @@ def draw(st):
         ax.bar(etas, share, width=(etas[1] - etas[0]) * 0.8 if len(etas) > 1 else 8, bottom=bottom, label=name)
         bottom = [b + x for b, x in zip(bottom, share)]
     ax.set_xlabel("k2 = eta [deg]")
-    ax.set_ylabel(f"share of the {st.a.grid.replace(',', ' x ')} grid")
-    ax.set_title("Why the workspace changes with k2: every grid point by the first check it fails", fontsize=10)
+    ax.set_ylabel(f"share of the {grid} grid")
+    ax.set_title(title("Why the workspace changes with k2: every grid point by the first check it fails"),
+                 fontsize=9)
     ax.legend(fontsize=8, loc="upper center", ncol=4)
     ax.set_ylim(0, 1.25)
     save(fig, "status_k2.png")
@@ -571,9 +695,10 @@ def draw(st):
             ax.grid(alpha=0.3)
             ax.set_title(lbl, fontsize=10)
         frac = len(ok) / len(rows) if rows else float("nan")
-        fig.suptitle(f"Reachable grid points, plate pitched {pitch:g} deg: {len(ok)} of {len(rows)} "
-                     f"({frac:.3f}) (paper Fig. 8)", fontsize=10)
-        save(fig, f"workspace_{name}.png", top=0.92)
+        vol = st.points_volume[name]
+        fig.suptitle(title(f"Reachable grid points, plate pitched {pitch:g} deg: {len(ok)} of {len(rows)} "
+                           f"({frac:.3f}); reachable volume {vol:.4g} m^3", "Fig. 8"), fontsize=10)
+        save(fig, f"workspace_{name}.png", top=0.88)
 
     # Where the type-1 singularities lie (the paper's Fig. 7).
     fig, axes = plt.subplots(1, len(st.maps), figsize=(12, 5.8))
@@ -592,12 +717,14 @@ def draw(st):
         ax.set_xlabel("X [m] (Y = 0, level plate)")
         ax.set_ylabel("Z [m]")
         ax.set_aspect("equal")
-        ax.set_title(f"k2 = {eta:g} deg: smallest type-1 margin mu\n(cyan: mu = 0.05, white dashed: reachable)",
+        ax.set_title(f"the design at k2 = {eta:g} deg: smallest type-1 margin mu\n"
+                     f"(cyan: mu = 0.05, white dashed: reachable)",
                      fontsize=10)
         fig.colorbar(im, ax=ax, shrink=0.8)
-    fig.suptitle("Where the type-1 singularities lie: the paper (its Fig. 7) has them near the axis for negative k2, "
-                 "away from it for positive; white: no branch solution", fontsize=10)
-    save(fig, "singularities_k2.png", top=0.9)
+    fig.suptitle(title("Where the type-1 singularities lie (white: no branch solution)"
+                       + ("; the paper (its Fig. 7) has them near the axis for negative k2, away from it for positive"
+                          if paper else "")), fontsize=10)
+    save(fig, "singularities_k2.png", top=0.88)
 
 
 SWEEP_KEY = {"k1": "k1", "k2": "eta_deg", "k3": "k3", "k4": "k4"}
@@ -617,6 +744,7 @@ def main():
     a.grid = a.grid or base["grid"]
     a.designs = a.designs or base["designs"]
     a.draw, a.map, a.heights, a.status_etas = base["draw"], base["map"], base["heights"], base["status_etas"]
+    a.volume = base["volume"]
     if a.designs < 2:
         fail("--designs takes 2 or more", 2)
     if a.jobs is not None and a.jobs < 1:
@@ -635,7 +763,8 @@ def main():
     st.workspace()
     st.margins()
     st.numbers()
-    st.haf_readings()
+    if st.is_proto:
+        st.haf_readings()  # what the paper's 11.487 could have been: the prototype's figure only
     st.workspace_readings()
     st.stop_heights()
     st.write(os.path.join(a.out, "summary.txt"), "\n".join(st.summary) + "\n")

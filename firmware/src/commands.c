@@ -153,15 +153,23 @@ static void move_commit(fw_controller *c, const proto_message *m, uint8_t functi
         return;
     }
     accept_commit(c, seq);
+    fw_move_start start = FW_START_REST;
     if (queued) {
         /* Blend if the path allows, else run it back to back; setpoints already queued for the
          * step generator are behind us. */
-        fw_move_blend(&c->move, &c->next, &c->geom, &c->lim, c->segments_run + 2u, &c->blend_k0);
+        start = fw_move_blend(&c->move, &c->next, &c->geom, &c->lim, c->segments_run + 2u, &c->blend_k0) == 0
+                    ? FW_START_BLENDED
+                    : FW_START_AFTER;
         c->has_next = true;
     } else {
         fw_start_source(c, FW_SRC_MOVE);
     }
     fw_ack(c, function, seq, (uint32_t)(mv->prof.T * TSE_R(1000.0) + TSE_R(0.5)));
+    /* Per mille of the limit, rounded up: a demand over the limit never reads as at it. */
+    const tse_real demand = mv->bound_ratio * TSE_R(1000.0);
+    const int32_t info[5] = {seq, start, mv->bound, mv->bound_slide,
+                             demand >= TSE_R(65535.0) ? 65535 : (int32_t)tse_ceil(demand)};
+    fw_send(c, PM_MOVE_INFO, info);
 }
 
 static void traj_commit(fw_controller *c, const proto_message *m, uint8_t function)

@@ -49,9 +49,33 @@ static void move_omega(fw_move *mv)
         mv->omega[k] = n > TSE_R(0.0) ? sgn * rel[k + 1] * mv->angle / n : TSE_R(0.0);
 }
 
-static tse_real min_pos(tse_real a, tse_real b)
+/* A limit on the path parameter's speed, acceleration or jerk, and the fw_move_bound it came from. */
+typedef struct {
+    tse_real v;
+    uint8_t by;
+} limit_on_u;
+
+static void tighten(limit_on_u *l, tse_real v, uint8_t by)
 {
-    return a < b ? a : b;
+    if (v < l->v) {
+        l->v = v;
+        l->by = by;
+    }
+}
+
+/* What set the pace of profile p, planned within V, A and J to last at least min_T: the request
+ * when the plan lasts just that (the fastest profile was shorter, and the plan slowed it down to
+ * the request; a tie goes to the request); else the speed limit when the profile cruises at it,
+ * or, when its ramps meet, whichever of the acceleration and jerk limits gives the longer ramp at
+ * its peak speed (fw/profile.h). */
+static uint8_t pace_bound(const fw_profile *p, limit_on_u V, limit_on_u A, limit_on_u J, tse_real min_T)
+{
+    if (p->D == TSE_R(0.0) || (min_T > TSE_R(0.0) && p->T <= min_T * (TSE_R(1.0) + TSE_R(8.0) * TSE_REAL_EPS)))
+        return FW_BOUND_ASKED;
+    if (p->Tc > TSE_R(0.0))
+        return V.by;
+    const tse_real by_acc = TSE_R(2.0) * p->V / A.v;
+    return by_acc * by_acc >= TSE_R(2.0) * TSE_PI * p->V / J.v ? A.by : J.by;
 }
 
 void fw_plan_clear(fw_plan_result *res)
@@ -112,30 +136,33 @@ int fw_move_plan_by(fw_move *mv, const tse_geometry *g, const fw_limits *lim, co
     move_omega(mv);
     mv->stretch = TSE_R(1.0);
 
-    /* Limits on u: whichever of translation and rotation binds.  The angular jerk limit keeps
-     * the plate's ramp-time character: dwmax * jmax / amax. */
+    /* Limits on u: whichever of translation and rotation binds, and which limit that is.  The
+     * angular jerk limit keeps the plate's ramp-time character: dwmax * jmax / amax. */
     const tse_real huge = (tse_real)INFINITY;
-    tse_real V = huge, A = huge, J = huge;
+    limit_on_u V = {huge, 0}, A = {huge, 0}, J = {huge, 0};
     if (mv->length > TSE_R(0.0)) {
-        V = min_pos(V, lim->plate_vmax / mv->length);
-        A = min_pos(A, lim->plate_amax / mv->length);
-        J = min_pos(J, lim->plate_jmax / mv->length);
+        tighten(&V, lim->plate_vmax / mv->length, FW_BOUND_PLATE_VMAX);
+        tighten(&A, lim->plate_amax / mv->length, FW_BOUND_PLATE_AMAX);
+        tighten(&J, lim->plate_jmax / mv->length, FW_BOUND_PLATE_JMAX);
         if (kind == FW_MOVE_SPEED)
-            V = min_pos(V, value / mv->length);
+            tighten(&V, value / mv->length, FW_BOUND_ASKED);
     }
     if (mv->angle > TSE_R(0.0)) {
-        V = min_pos(V, lim->plate_wmax / mv->angle);
-        A = min_pos(A, lim->plate_dwmax / mv->angle);
-        J = min_pos(J, lim->plate_dwmax * lim->plate_jmax / lim->plate_amax / mv->angle);
+        tighten(&V, lim->plate_wmax / mv->angle, FW_BOUND_PLATE_WMAX);
+        tighten(&A, lim->plate_dwmax / mv->angle, FW_BOUND_PLATE_DWMAX);
+        tighten(&J, lim->plate_dwmax * lim->plate_jmax / lim->plate_amax / mv->angle, FW_BOUND_PLATE_JMAX_ANGULAR);
     }
     const tse_real min_T = kind == FW_MOVE_DURATION ? value : TSE_R(0.0);
     const tse_real D = (mv->length > TSE_R(0.0) || mv->angle > TSE_R(0.0)) ? TSE_R(1.0) : TSE_R(0.0);
     if (D == TSE_R(0.0))
-        V = A = J = TSE_R(1.0); /* a null move: only its duration matters */
-    if (fw_profile_plan(&mv->prof, D, V, A, J, min_T) != 0) {
+        V.v = A.v = J.v = TSE_R(1.0); /* a null move: only its duration matters */
+    if (fw_profile_plan(&mv->prof, D, V.v, A.v, J.v, min_T) != 0) {
         res->reason = FW_REASON_RANGE;
         return -1;
     }
+    mv->bound = pace_bound(&mv->prof, V, A, J, min_T);
+    mv->bound_slide = 0;
+    mv->bound_ratio = TSE_R(0.0);
 
     fw_limits margin = *lim;
     margin.slide_vmax *= LIMIT_MARGIN;
@@ -159,6 +186,14 @@ int fw_move_plan_by(fw_move *mv, const tse_geometry *g, const fw_limits *lim, co
         if (k <= TSE_R(1.0)) {
             mv->v_peak = vr * margin.slide_vmax;
             return 0;
+        }
+        if (round == 0) {
+            /* The slides set the pace: the demand that asked for the longer stretch (k above), at
+             * the pace before it, against its limit parameter. */
+            const bool accel = ka > vr;
+            mv->bound = accel ? FW_BOUND_SLIDE_AMAX : FW_BOUND_SLIDE_VMAX;
+            mv->bound_slide = (uint8_t)((accel ? val.a_slide : val.v_slide) + 1u);
+            mv->bound_ratio = (accel ? ar : vr) * LIMIT_MARGIN;
         }
         /* Sampling moves with the stretch, so aim a little beyond the measured need. */
         k *= TSE_R(1.02);

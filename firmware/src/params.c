@@ -50,8 +50,11 @@ const fw_param_def fw_param_table[FP_COUNT] = {
     [FP_HOME_SW_4] = {"home_sw_4", "um", 0, 5000000, 200000, HOME_SW_DOC(4)},
     [FP_HOME_SW_5] = {"home_sw_5", "um", 0, 5000000, 200000, HOME_SW_DOC(5)},
     [FP_HOME_SW_6] = {"home_sw_6", "um", 0, 5000000, 200000, HOME_SW_DOC(6)},
-    /* DM542/TB6600-class drivers ask for STEP pulses of at least 2 us and DIR set 5 us ahead. */
-    [FP_STEP_PULSE_NS] = {"step_pulse_ns", "ns", 100, 1000000, 2000,
+    /* The Leadshine DM542 (User's Manual V1.0, section 10, Figure 11) asks for a pulse and a low
+     * time of at least 2.5 us each and DIR 5 us ahead of the pulse's edge (docs/board.md).  2.5 us
+     * is also the longest pulse the board's 200 kHz step interrupts allow at step_rate_max's
+     * default 200 kHz (high and low alike in the 5 us between two steps of a slide). */
+    [FP_STEP_PULSE_NS] = {"step_pulse_ns", "ns", 100, 1000000, 2500,
                           "STEP high time; refused unless the pulse ends within its step interrupt "
                           "period and leaves a low time at least as long before the same slide's "
                           "next step"},

@@ -57,6 +57,37 @@ const proto_enum_entry proto_move_kind_names[] = {
     {0, 0},
 };
 
+const proto_enum_entry proto_move_start_names[] = {
+    {FW_START_REST, "rest"},
+    {FW_START_BLENDED, "blended"},
+    {FW_START_AFTER, "after"},
+    {0, 0},
+};
+
+const proto_enum_entry proto_move_bound_names[] = {
+    {FW_BOUND_ASKED, "asked"},
+    {FW_BOUND_PLATE_VMAX, "plate_vmax"},
+    {FW_BOUND_PLATE_AMAX, "plate_amax"},
+    {FW_BOUND_PLATE_JMAX, "plate_jmax"},
+    {FW_BOUND_PLATE_WMAX, "plate_wmax"},
+    {FW_BOUND_PLATE_DWMAX, "plate_dwmax"},
+    {FW_BOUND_PLATE_JMAX_ANGULAR, "plate_jmax_angular"},
+    {FW_BOUND_SLIDE_VMAX, "slide_vmax"},
+    {FW_BOUND_SLIDE_AMAX, "slide_amax"},
+    {0, 0},
+};
+
+const proto_enum_def proto_enums[] = {
+    {proto_state_names, "state", "state"},
+    {proto_fault_names, "fault", "fault"},
+    {proto_reason_names, "reason", "reject reason"},
+    {proto_kin_status_names, "kin_status", "kinematic status (kinematics.md)"},
+    {proto_move_kind_names, "move_kind", "move kind"},
+    {proto_move_start_names, "move_start", "move start"},
+    {proto_move_bound_names, "move_bound", "move bound"},
+    {0, 0, 0},
+};
+
 /* Field shorthands: name, type, byte offset, raw range, unit, scale, value names, doc. */
 #define SEQ(off) {"seq", PF_U8, off, 0, 255, "", 1.0, 0, "sequence number, echoed in ACK/REJECT"}
 #define POS24(nm, off, doc) {nm, PF_I24, off, -4000000, 4000000, "m", 1e-6, 0, doc}
@@ -184,4 +215,20 @@ const proto_def proto_table[PM_COUNT] = {
      {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, "parameter id"},
       FULL_I32("value", 2, "", 1.0, "value in the parameter's integer unit")},
      "Answer to PARAM_GET and PARAM_SET."},
+    {PM_MOVE_INFO, 0x2A, "MOVE_INFO", PROTO_TO_HOST, 6, 5,
+     {{"seq", PF_U8, 0, 0, 255, "", 1.0, 0, "the accepted MOVE_COMMIT's sequence number"},
+      {"start", PF_U8, 1, 0, FW_START_COUNT - 1, "", 1.0, proto_move_start_names,
+       "how it starts: from rest, blended into the running move's deceleration, or after it (back to "
+       "back, where a blend would break a limit)"},
+      {"bound", PF_U8, 2, 0, FW_BOUND_COUNT - 1, "", 1.0, proto_move_bound_names,
+       "what set its pace: the duration or speed asked, a plate limit, or a slide limit that stretched "
+       "it (slide_vmax also where the step rate is the lower limit)"},
+      {"slide", PF_U8, 3, 0, 6, "", 1.0, 0,
+       "for slide_vmax and slide_amax, the slide 1..6 (A1, B1, A2, B2, A3, B3); 0 otherwise"},
+      {"demand", PF_U16, 4, 0, 65535, "per mille", 1.0, 0,
+       "for slide_vmax and slide_amax, what that slide would have needed without the stretch (at the "
+       "pace asked, or the plate limits' where slower), per mille of its limit (1140 = 14 % over; "
+       "capped at 65535); 0 otherwise"}},
+     "Sent right after the ACK of an accepted MOVE_COMMIT (whose detail is the planned duration): "
+     "how the move starts and what set its pace."},
 };

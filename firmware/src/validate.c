@@ -44,6 +44,8 @@ int fw_validate_per_segment(const fw_move *mv, const tse_geometry *g, const fw_l
     fw_slide_check_finish(&chk);
     v->v_ratio = chk.v_ratio;
     v->a_ratio = chk.a_ratio;
+    v->v_slide = chk.v_slide;
+    v->a_slide = chk.a_slide;
     v->worst = fw_slide_check_worst(&chk);
     copy6(v->q_end, chk.q);
     return 0;
@@ -293,6 +295,8 @@ static __attribute__((noinline)) int prove(const fw_move *mv, const tse_geometry
             a_slide = (uint8_t)k;
         }
     }
+    v->v_slide = v_slide;
+    v->a_slide = a_slide;
     v->worst.accel = v->a_ratio > v->v_ratio;
     v->worst.slide = v->worst.accel ? a_slide : v_slide;
     v->worst.ratio = v->worst.accel ? v->a_ratio : v->v_ratio;

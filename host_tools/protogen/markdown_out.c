@@ -125,11 +125,8 @@ int gen_markdown(FILE *out)
     if (messages(out) != 0)
         return -1;
     fprintf(out, "\n## Enumerations\n");
-    print_enum(out, "state", proto_state_names);
-    print_enum(out, "fault", proto_fault_names);
-    print_enum(out, "reject reason", proto_reason_names);
-    print_enum(out, "kinematic status (kinematics.md)", proto_kin_status_names);
-    print_enum(out, "move kind", proto_move_kind_names);
+    for (const proto_enum_def *d = proto_enums; d->table; ++d)
+        print_enum(out, d->title, d->table);
     state_matrix(out);
     parameters(out);
     return 0;

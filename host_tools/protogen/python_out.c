@@ -11,17 +11,6 @@
 #include "outputs.h"
 #include "param_text.h"
 
-/* The enumerations a field may name, under the key the Python side uses. */
-static const struct {
-    const proto_enum_entry *table;
-    const char *key;
-} enums[] = {
-    {proto_state_names, "state"},           {proto_fault_names, "fault"},
-    {proto_reason_names, "reason"},         {proto_kin_status_names, "kin_status"},
-    {proto_move_kind_names, "move_kind"},
-};
-#define N_ENUMS ((int)(sizeof enums / sizeof enums[0]))
-
 /* A Python string literal: quotes, backslashes and control characters escaped. */
 static void py_str(FILE *out, const char *s)
 {
@@ -49,11 +38,12 @@ static int py_double(FILE *out, double x, const char *what)
     return 0;
 }
 
+/* The key the Python side uses for an enumeration a field names (proto_enums). */
 static const char *enum_key(const proto_enum_entry *t)
 {
-    for (int i = 0; i < N_ENUMS; ++i)
-        if (enums[i].table == t)
-            return enums[i].key;
+    for (const proto_enum_def *e = proto_enums; e->table; ++e)
+        if (e->table == t)
+            return e->key;
     return NULL;
 }
 
@@ -99,10 +89,10 @@ static int messages(FILE *out)
 static void enumerations(FILE *out)
 {
     fprintf(out, "# Named values of the enumerated fields.\nENUMS = {\n");
-    for (int i = 0; i < N_ENUMS; ++i) {
-        fprintf(out, "    \"%s\": {", enums[i].key);
-        for (const proto_enum_entry *e = enums[i].table; e->name; ++e)
-            fprintf(out, "%s%d: \"%s\"", e == enums[i].table ? "" : ", ", (int)e->value, e->name);
+    for (const proto_enum_def *d = proto_enums; d->table; ++d) {
+        fprintf(out, "    \"%s\": {", d->key);
+        for (const proto_enum_entry *e = d->table; e->name; ++e)
+            fprintf(out, "%s%d: \"%s\"", e == d->table ? "" : ", ", (int)e->value, e->name);
         fprintf(out, "},\n");
     }
     fprintf(out, "}\n\n");

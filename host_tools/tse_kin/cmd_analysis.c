@@ -1,18 +1,16 @@
-/* `tse-kin haf` and `tse-kin workspace`: the paper's design figures, beside the paper's values.
+/* `tse-kin haf` and `tse-kin workspace`: the paper's design figures, beside the paper's values
+ * when the design is its prototype.
  *
  * Promise: lines starting with '#' are commentary; every other line is CSV, and the last line is
- * the summary a script reads (haf: "haf,mean,min,max,paper,11.487"; workspace:
- * "reachable,total,fraction").  The figures are what the library computes, whatever the paper says. */
+ * the summary a script reads (haf: "haf,mean,min,max", then ",paper,11.487" for the prototype
+ * only; workspace: "reachable,total,fraction,volume_m3").  The figures are what the library
+ * computes, whatever the paper says. */
 #include <math.h>
 #include <stdio.h>
 
 #include "commands.h"
 #include "csv.h"
 #include "haf_heights.h"
-
-/* The paper's figures for the prototype (docs/kinematics.md, "Forward kinematics, Jacobian, metrics"). */
-#define PAPER_HAF "11.487"
-#define PAPER_WORKSPACE "0.28"
 
 const char cmd_haf_help[] =
     "usage: tse-kin haf [--params FILE] [--precision float|double] [--z Z1,Z2,...]\n"
@@ -23,10 +21,11 @@ const char cmd_haf_help[] =
     "  z,sigma_z,sigma_z_k1_1,haf\n"
     "sigma_z = 1/(sqrt(6)|ds/dZ|) at X = Y = 0, zero orientation; sigma_z_k1_1 the same for the same\n"
     "design with k1 = 1; haf = tse_haf, their ratio. A height without a branch solution gives nan.\n"
-    "Then a '#' line with mean, min and max HAF beside the paper's figure (paper: 11.487), and last\n"
-    "the line\n"
-    "  haf,MEAN,MIN,MAX,paper,11.487\n"
-    "(nan,nan,nan when no height had a value). Lines starting with '#' are comments.\n"
+    "Then a '#' line with mean, min and max HAF, and last the line\n"
+    "  haf,MEAN,MIN,MAX\n"
+    "(nan,nan,nan when no height had a value). When the design is the paper's prototype (every\n"
+    "kinematic value the default), the paper's figure is named beside ours ('paper: 11.487') and\n"
+    "the last line ends ',paper,11.487'. Lines starting with '#' are comments.\n"
     "\n" KIN_HELP_PARAMS "\n" KIN_HELP_EXIT;
 
 const char cmd_workspace_help[] =
@@ -36,16 +35,21 @@ const char cmd_workspace_help[] =
     "Workspace percentage of the paper: counts the reachable points (status ok) of the cylindrical\n"
     "grid r_i = (L/2) i/(NR-1), phi_j = 2 pi j/NPHI, Z_k = L k/(NZ-1) at the fixed orientation\n"
     "R,P,Y (radians, default 0,0,0). Default grid 21,36,41 (30996 points). NR >= 2, NPHI >= 1,\n"
-    "NZ >= 2, whole numbers. Prints '#' lines describing the grid, then a '#' line naming the\n"
-    "columns beside the paper's figure (paper: 0.28 for the prototype), and last\n"
-    "  reachable,total,fraction\n"
+    "NZ >= 2, whole numbers. Also the workspace as a volume: the reachable volume of the plate's\n"
+    "centre at that orientation, the sum of the cells of the reachable points (each point stands\n"
+    "for its cell of the cylinder r <= L/2, 0 <= Z <= L, cut halfway between neighbouring points\n"
+    "and into NPHI sectors; the cells fill the cylinder, pi L^3/4), so that designs of different\n"
+    "size compare. Prints '#' lines describing the grid, the cylinder and the cells' size (the\n"
+    "volume's resolution), then a '#' line naming the columns (beside the paper's 0.28 when the\n"
+    "design is its prototype), and last\n"
+    "  reachable,total,fraction,volume_m3\n"
     "with the fraction as %.6f.\n"
     "\n"
     "With --points, prints the grid points themselves instead, so that the workspace can be drawn:\n"
     "'#' lines, the header and one row per point (Z, then r, then phi, as they are counted)\n"
     "  x,y,z,status,scissor\n"
     "with status and scissor as tse-kin ik answers the point (ok rows are the reachable points), and\n"
-    "last a '#' line with reachable,total,fraction. A progress bar goes to stderr when it is a\n"
+    "last a '#' line with reachable,total,fraction,volume_m3. A progress bar goes to stderr when it is a\n"
     "terminal and the grid takes more than a second.\n"
     "\n" KIN_HELP_PARAMS "\n" KIN_HELP_EXIT;
 
@@ -105,18 +109,35 @@ int cmd_haf(const kin_run *run)
         ++count;
     }
     run->ops->destroy(rctx);
+    const int paper = kin_params_is_prototype(run->params);
     if (count == 0) {
-        printf("# HAF: no height had a value (paper: " PAPER_HAF ")\n");
-        printf("haf,nan,nan,nan,paper," PAPER_HAF "\n");
+        printf("# HAF: no height had a value%s\n", paper ? " (paper: " KIN_PAPER_HAF ")" : "");
+        printf("haf,nan,nan,nan%s\n", paper ? ",paper," KIN_PAPER_HAF : "");
         return finish();
     }
     const double mean = sum / count;
-    printf("# HAF over %d of %d heights: mean %.6f, min %.6f, max %.6f (paper: " PAPER_HAF ")\n", count, n, mean, lo,
-           hi);
+    printf("# HAF over %d of %d heights: mean %.6f, min %.6f, max %.6f%s\n", count, n, mean, lo, hi,
+           paper ? " (paper: " KIN_PAPER_HAF ")" : "");
     fputs("haf", stdout);
     csv_put_numbers(stdout, (const double[3]){mean, lo, hi}, 3);
-    printf(",paper," PAPER_HAF "\n");
+    printf("%s\n", paper ? ",paper," KIN_PAPER_HAF : "");
     return finish();
+}
+
+void kin_workspace_comments(const kin_run *run)
+{
+    const int *g = run->opt->grid;
+    const double *o = run->opt->orientation;
+    const double L = run->params->v[TSE_PARAM_L], pi = 3.14159265358979323846;
+    printf("# grid %d x %d x %d (r, phi, Z) = %ld points: r_i = (L/2) i/(NR-1), phi_j = 2 pi j/NPHI, "
+           "Z_k = L k/(NZ-1)\n",
+           g[0], g[1], g[2], (long)g[0] * g[1] * g[2]);
+    printf("# orientation %.17g,%.17g,%.17g rad; precision %s\n", o[0], o[1], o[2], run->ops->name);
+    printf("# volume_m3: the reachable volume of the plate's centre at this orientation, the sum of the cells of "
+           "the reachable points; the cells fill the cylinder r <= %.6g m, 0 <= Z <= %.6g m (%.6g m^3), cut halfway "
+           "between neighbouring points: %.4g m in r, %.4g m in Z, an arc of %.4g m at the rim (the volume's "
+           "resolution)\n",
+           L / 2, L, pi * L * L * L / 4, L / (2 * (g[0] - 1)), L / (g[2] - 1), pi * L / g[1]);
 }
 
 int cmd_workspace(const kin_run *run)
@@ -126,18 +147,19 @@ int cmd_workspace(const kin_run *run)
     const int *g = run->opt->grid;
     const double *o = run->opt->orientation;
     long reachable = 0, total = 0;
-    const tse_status st = run->ops->workspace(run->ctx, g[0], g[1], g[2], o, &reachable, &total);
+    double volume = NAN;
+    const tse_status st = run->ops->workspace_volume(run->ctx, g[0], g[1], g[2], o, &reachable, &total, &volume);
     if (st != TSE_OK) {
         /* Options were checked against the same rules, so this is the library disagreeing. */
         fprintf(stderr, "tse-kin: the library refused the grid %d,%d,%d: %s\n", g[0], g[1], g[2],
                 tse_status_name(st));
         return KIN_EXIT_FILE;
     }
-    printf("# grid %d x %d x %d (r, phi, Z) = %ld points: r_i = (L/2) i/(NR-1), phi_j = 2 pi j/NPHI, "
-           "Z_k = L k/(NZ-1)\n",
-           g[0], g[1], g[2], total);
-    printf("# orientation %.17g,%.17g,%.17g rad; precision %s\n", o[0], o[1], o[2], run->ops->name);
-    printf("# reachable,total,fraction (paper: " PAPER_WORKSPACE " for the prototype)\n");
-    printf("%ld,%ld,%.6f\n", reachable, total, total > 0 ? (double)reachable / (double)total : 0.0);
+    kin_workspace_comments(run);
+    printf("# reachable,total,fraction,volume_m3%s\n",
+           kin_params_is_prototype(run->params) ? " (paper: " KIN_PAPER_WORKSPACE " for the prototype)" : "");
+    printf("%ld,%ld,%.6f,", reachable, total, total > 0 ? (double)reachable / (double)total : 0.0);
+    csv_put_number(stdout, volume);
+    putchar('\n');
     return finish();
 }

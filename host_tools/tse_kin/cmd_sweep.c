@@ -1,9 +1,9 @@
 /* `tse-kin sweep`: the paper's design study, one parameter varied over a range of designs.
  *
- * Promise: '#' comment lines, then the header "param,value,haf,workspace", then one row per
- * design in the order of the values, whatever --jobs is: the figures are the ones `tse-kin haf`
- * (its summary's mean, at its default heights) and `tse-kin workspace --grid` (its fraction) print
- * for that design, so a script may take either.  A design the library refuses keeps its row with
+ * Promise: '#' comment lines, then the header "param,value,haf,workspace,volume_m3", then one row
+ * per design in the order of the values, whatever --jobs is: the figures are the ones `tse-kin haf`
+ * (its summary's mean, at its default heights) and `tse-kin workspace --grid` (its fraction and
+ * volume) print for that design, so a script may take either.  A design the library refuses keeps its row with
  * nan figures and a comment naming the parameter that is wrong; the sweep goes on.  The designs
  * run on --jobs threads (default: every core), with a progress bar on a terminal's stderr. */
 #include <math.h>
@@ -33,11 +33,13 @@ const char cmd_sweep_help[] =
     "prototype). PARAM is any kinematic key of the parameter file, in its unit: k1, eta_deg (the\n"
     "paper's k2, degrees) or eta (radians), k3, k4, L, alpha_min(_deg), alpha_max(_deg), s_min,\n"
     "s_max, mu_min, nu_min. Prints '#' comment lines, then the header and one row per design:\n"
-    "  param,value,haf,workspace\n"
+    "  param,value,haf,workspace,volume_m3\n"
     "param is PARAM, value its value (%.17g); haf the mean HAF over tse-kin haf's default heights\n"
     "(its summary line's mean for that design); workspace the reachable fraction of the cylindrical\n"
     "grid at zero orientation (tse-kin workspace's fraction, unrounded), on --grid (default the\n"
-    "paper's 16,24,32). A design the library refuses gives nan figures and a comment naming the\n"
+    "paper's 16,24,32); volume_m3 the reachable volume of the plate's centre summed from the same\n"
+    "grid (tse-kin workspace's volume), the size that compares designs of different L. A comment\n"
+    "names the paper's figures when the other parameters are its prototype's. A design the library refuses gives nan figures and a comment naming the\n"
     "parameter that is wrong; the sweep goes on. Rows come in the order of the values whatever\n"
     "--jobs is: the designs run on J threads (default: the number of cores), with a progress bar on\n"
     "stderr when it is a terminal and the sweep takes more than a second.\n"
@@ -51,7 +53,7 @@ typedef struct {
 
 /* One design's figures, written by the one call that computes them. */
 typedef struct {
-    double value, haf, workspace;
+    double value, haf, workspace, volume;
     tse_param_id bad; /* why the design was refused; TSE_PARAM_OK when it was not */
     int refused;
 } sweep_row;
@@ -137,7 +139,7 @@ static void sweep_one(void *ctx, long i)
     const kin_run *run = w->run;
     sweep_row *row = &w->rows[i];
     row->value = value_at(w->plan, i);
-    row->haf = row->workspace = NAN;
+    row->haf = row->workspace = row->volume = NAN;
     row->bad = TSE_PARAM_OK;
     row->refused = 0;
 
@@ -154,8 +156,13 @@ static void sweep_one(void *ctx, long i)
     row->haf = kin_haf_mean(run->ops, c, z, nz, NULL);
     static const double level[3] = {0, 0, 0};
     long reachable = 0, total = 0;
-    if (run->ops->workspace_count(c, w->grid[0], w->grid[1], w->grid[2], level, &reachable, &total) == TSE_OK && total > 0)
+    double volume = NAN;
+    if (run->ops->workspace_volume(c, w->grid[0], w->grid[1], w->grid[2], level, &reachable, &total, &volume) ==
+            TSE_OK &&
+        total > 0) {
         row->workspace = (double)reachable / (double)total;
+        row->volume = volume;
+    }
     run->ops->destroy(c);
 }
 
@@ -217,10 +224,13 @@ int cmd_sweep(const kin_run *run)
     printf("# sweep of %s from %.17g to %.17g, %ld designs; every other parameter from %s\n", plan.key->key, plan.from,
            plan.to, plan.n, run->params_name);
     printf("# haf: mean HAF over tse-kin haf's default heights (%d, 5 %% inside the alpha stops); "
-           "workspace: reachable fraction of the %d x %d x %d grid (r, phi, Z) at zero orientation\n",
+           "workspace: reachable fraction of the %d x %d x %d grid (r, phi, Z) at zero orientation; volume_m3: "
+           "the reachable volume of the plate's centre, the sum of those points' cells (tse-kin workspace)\n",
            KIN_HAF_DEFAULT_HEIGHTS, grid[0], grid[1], grid[2]);
-    printf("# precision %s; %d thread%s (paper, prototype: HAF 11.487, workspace 0.28)\n", run->ops->name, jobs,
-           jobs == 1 ? "" : "s");
+    printf("# precision %s; %d thread%s%s\n", run->ops->name, jobs, jobs == 1 ? "" : "s",
+           kin_params_is_prototype(run->params)
+               ? " (paper, prototype: HAF " KIN_PAPER_HAF ", workspace " KIN_PAPER_WORKSPACE ")"
+               : "");
     for (long i = 0; i < plan.n; ++i) {
         if (!rows[i].refused)
             continue;
@@ -228,10 +238,10 @@ int cmd_sweep(const kin_run *run)
         describe_refusal(run, &plan, &rows[i], why, sizeof why);
         printf("# %s = %.17g: %s; its figures are nan\n", plan.key->key, rows[i].value, why);
     }
-    printf("param,value,haf,workspace\n");
+    printf("param,value,haf,workspace,volume_m3\n");
     for (long i = 0; i < plan.n; ++i) {
         fputs(plan.key->key, stdout);
-        csv_put_numbers(stdout, (const double[3]){rows[i].value, rows[i].haf, rows[i].workspace}, 3);
+        csv_put_numbers(stdout, (const double[4]){rows[i].value, rows[i].haf, rows[i].workspace, rows[i].volume}, 4);
         putchar('\n');
     }
     free(rows);

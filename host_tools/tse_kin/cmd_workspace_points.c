@@ -1,8 +1,10 @@
 /* `tse-kin workspace --points`: the grid points themselves, so that the workspace can be drawn.
  *
  * Promise: '#' comment lines, the header "x,y,z,status,scissor", one row per grid point in the
- * order tse_workspace visits them (Z, then r, then phi), and last a '#' line with the count; the
- * rows whose status is ok are exactly the points `tse-kin workspace` counts on the same grid. */
+ * order tse_workspace visits them (Z, then r, then phi), and last a '#' line with the count and
+ * the volume of their cells; the rows whose status is ok are exactly the points `tse-kin workspace`
+ * counts on the same grid, and their cells its volume (to rounding: it sums ring by ring). */
+#include <math.h>
 #include <stdio.h>
 
 #include "commands.h"
@@ -14,17 +16,17 @@ int cmd_workspace_points(const kin_run *run)
     const int *g = run->opt->grid;
     const double *o = run->opt->orientation;
     const long total = (long)g[0] * g[1] * g[2];
-    printf("# grid %d x %d x %d (r, phi, Z) = %ld points: r_i = (L/2) i/(NR-1), phi_j = 2 pi j/NPHI, "
-           "Z_k = L k/(NZ-1)\n",
-           g[0], g[1], g[2], total);
-    printf("# orientation %.17g,%.17g,%.17g rad; precision %s; status and scissor as tse-kin ik answers the point\n",
-           o[0], o[1], o[2], run->ops->name);
+    kin_workspace_comments(run);
+    printf("# status and scissor as tse-kin ik answers the point\n");
     printf("x,y,z,status,scissor\n");
     kin_progress bar;
     kin_progress_start(&bar, "workspace", total);
     long reachable = 0, done = 0;
+    double volume = 0;
     for (int k = 0; k < g[2]; ++k)
-        for (int i = 0; i < g[0]; ++i)
+        for (int i = 0; i < g[0]; ++i) {
+            double cell = NAN;
+            (void)run->ops->workspace_cell(run->ctx, g, i, k, &cell);
             for (int j = 0; j < g[1]; ++j) {
                 double pose[6];
                 int scissor;
@@ -34,13 +36,19 @@ int cmd_workspace_points(const kin_run *run)
                 csv_put_number(stdout, xyz[0]);
                 csv_put_numbers(stdout, xyz + 1, 2);
                 printf(",%s,%d\n", tse_status_name(st), scissor);
-                reachable += st == TSE_OK;
+                if (st == TSE_OK) {
+                    ++reachable;
+                    volume += cell;
+                }
                 if ((++done & 1023) == 0)
                     kin_progress_update(&bar, done);
             }
+        }
     kin_progress_end(&bar);
-    printf("# reachable,total,fraction: %ld,%ld,%.6f (paper: 0.28 for the prototype)\n", reachable, total,
+    printf("# reachable,total,fraction,volume_m3: %ld,%ld,%.6f,", reachable, total,
            total > 0 ? (double)reachable / (double)total : 0.0);
+    csv_put_number(stdout, volume);
+    printf("%s\n", kin_params_is_prototype(run->params) ? " (paper: " KIN_PAPER_WORKSPACE " for the prototype)" : "");
     if (fflush(stdout) != 0 || ferror(stdout)) {
         fprintf(stderr, "tse-kin: error writing the output\n");
         return KIN_EXIT_FILE;

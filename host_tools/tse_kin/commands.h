@@ -36,6 +36,13 @@ int cmd_profile(const kin_run *run);
 int cmd_margins(const kin_run *run);
 /* workspace --points */
 int cmd_workspace_points(const kin_run *run);
+/* The '#' lines of both workspace forms: the grid, the orientation and how the volume is summed. */
+void kin_workspace_comments(const kin_run *run);
+
+/* The paper's figures for its prototype (docs/kinematics.md, "Forward kinematics, Jacobian,
+ * metrics"), printed beside ours only when the design is the prototype (kin_params_is_prototype). */
+#define KIN_PAPER_HAF "11.487"
+#define KIN_PAPER_WORKSPACE "0.28"
 
 /* Checks of a command's arguments that options.c cannot make alone (how many positional arguments
  * and what they say, options that exclude each other): 0, or -1 with the reason (exit 2).  main

@@ -127,20 +127,22 @@ static tse_status haf(const kin_ctx *c, double z, double *h)
     return st;
 }
 
-static tse_status workspace(const kin_ctx *c, int n_r, int n_phi, int n_z, const double orientation[3],
-                            long *reachable, long *total)
+static tse_status workspace_volume(const kin_ctx *c, int n_r, int n_phi, int n_z, const double orientation[3],
+                                   long *reachable, long *total, double *volume)
 {
-    tse_real o[3];
+    tse_real o[3], v = (tse_real)NAN;
     to_real(orientation, o, 3);
-    return tse_workspace(&c->g, n_r, n_phi, n_z, o, reachable, total);
+    const tse_status st = tse_workspace_volume(&c->g, n_r, n_phi, n_z, o, reachable, total, &v);
+    *volume = (double)v;
+    return st;
 }
 
-static tse_status workspace_count(const kin_ctx *c, int n_r, int n_phi, int n_z, const double orientation[3],
-                                  long *reachable, long *total)
+static tse_status workspace_cell(const kin_ctx *c, const int grid[3], int i, int k, double *volume)
 {
-    tse_real o[3];
-    to_real(orientation, o, 3);
-    return tse_workspace_count(&c->g, n_r, n_phi, n_z, o, reachable, total);
+    tse_real v = (tse_real)NAN;
+    const tse_status st = tse_workspace_cell_volume(&c->g, grid[0], grid[1], grid[2], i, k, &v);
+    *volume = (double)v;
+    return st;
 }
 
 static tse_status workspace_point(const kin_ctx *c, const int grid[3], int i, int j, int k,
@@ -193,8 +195,8 @@ const kin_ops KIN_PREC(kin_ops) = {
     .jacobian = jacobian,
     .sigma_z = sigma_z,
     .haf = haf,
-    .workspace = workspace,
-    .workspace_count = workspace_count,
+    .workspace_volume = workspace_volume,
+    .workspace_cell = workspace_cell,
     .workspace_point = workspace_point,
     .profile = profile,
     .margins = margins,

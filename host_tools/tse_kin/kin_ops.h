@@ -73,11 +73,13 @@ typedef struct {
     tse_status (*jacobian)(const kin_ctx *c, const double pose[6], kin_jacobian_out *out);
     tse_status (*sigma_z)(const kin_ctx *c, double z, double *sigma);
     tse_status (*haf)(const kin_ctx *c, double z, double *haf);
-    tse_status (*workspace)(const kin_ctx *c, int n_r, int n_phi, int n_z, const double orientation[3],
-                            long *reachable, long *total);
-    /* workspace's count by tse_workspace_count: the same numbers, faster (the sweep's). */
-    tse_status (*workspace_count)(const kin_ctx *c, int n_r, int n_phi, int n_z, const double orientation[3],
-                                  long *reachable, long *total);
+    /* The workspace of tse_workspace's grid (n_r, n_phi, n_z) at the orientation: the reachable
+     * points (tse_workspace_volume's count, tse_workspace's numbers, screened) and the volume of
+     * their cells [m^3]. */
+    tse_status (*workspace_volume)(const kin_ctx *c, int n_r, int n_phi, int n_z, const double orientation[3],
+                                   long *reachable, long *total, double *volume);
+    /* The volume of the cell of grid point (i, j, k), any j (tse_workspace_cell_volume) [m^3]. */
+    tse_status (*workspace_cell)(const kin_ctx *c, const int grid[3], int i, int k, double *volume);
     /* Grid point (i, j, k) of tse_workspace's grid (tse_workspace_pose, grid = n_r, n_phi, n_z) and
      * tse_ik's answer there without a seed, the answer tse_workspace counts. */
     tse_status (*workspace_point)(const kin_ctx *c, const int grid[3], int i, int j, int k,

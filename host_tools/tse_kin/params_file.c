@@ -4,6 +4,7 @@
 #include "text.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -91,6 +92,16 @@ void kin_params_default(kin_param_values *p)
     p->v[TSE_PARAM_S_MAX] = d.s_max;
     p->v[TSE_PARAM_MU_MIN] = d.mu_min;
     p->v[TSE_PARAM_NU_MIN] = d.nu_min;
+}
+
+int kin_params_is_prototype(const kin_param_values *p)
+{
+    kin_param_values d;
+    kin_params_default(&d);
+    for (int id = 1; id < TSE_PARAM_COUNT; ++id)
+        if (!(fabs(p->v[id] - d.v[id]) <= 1e-12 * fabs(d.v[id])))
+            return 0;
+    return 1;
 }
 
 void kin_params_describe_invalid(const kin_param_values *p, tse_param_id bad, const char *name,

@@ -59,6 +59,10 @@ int kin_param_keys(const kin_param_key_def **keys);
 /* The prototype's values (tse_params_default of the double build), no line. */
 void kin_params_default(kin_param_values *p);
 
+/* Whether every kinematic value is the prototype's (to 1e-12 relative, so that eta_deg = 30 is
+ * the default eta): only then does a command print the paper's figures beside its own. */
+int kin_params_is_prototype(const kin_param_values *p);
+
 /* Parses the text of a parameter file over the values already in *p (normally the defaults), then
  * validates the whole set with tse_params_check.  `name` is the file name used in messages.
  * Returns KIN_PARAMS_OK, or KIN_PARAMS_BAD with *p untouched and the message in err. */

@@ -8,6 +8,7 @@
 #include "tsectl.h"
 
 volatile sig_atomic_t tsectl_interrupted;
+volatile sig_atomic_t tsectl_signals;
 int tsectl_timeout_ms = 2000;
 
 void ctl_error(const char *fmt, ...)
@@ -113,7 +114,12 @@ static int at_rest(int st)
     return st == FW_STATE_IDLE || st == FW_STATE_DISABLED || st == FW_STATE_FAULT || st == FW_STATE_ESTOP;
 }
 
-int ctl_wait_rest(tlink *l, double expected_s, const char *what, int show_progress, proto_message *last)
+/* ctl_wait_rest's loop.  settled: the caller knows that every STATUS from now on reflects what it
+ * asked for (a STOP already acknowledged: frames keep their order on the bus), so rest counts at
+ * once; otherwise a STATUS sent before the command took effect may show rest, and rest counts only
+ * after motion was seen or after 2 s of it. */
+static int wait_rest(tlink *l, double expected_s, const char *what, int show_progress, proto_message *last,
+                     int settled)
 {
     const uint64_t t0 = link_now_us();
     /* Bounded: three times what was planned plus a minute (homing has no plan). */
@@ -139,7 +145,7 @@ int ctl_wait_rest(tlink *l, double expected_s, const char *what, int show_progre
             seen_motion = 1;
         if (show_progress)
             progress_update(&p, expected_s > 0 ? fmin(el / expected_s, 0.99) : fmin(el / (el + 5.0), 0.99), NULL);
-        if (seen_motion && at_rest(st)) {
+        if ((seen_motion || settled) && at_rest(st)) {
             const int ok = st == FW_STATE_IDLE && m.v[1] == FW_FAULT_NONE;
             if (show_progress && ok)
                 progress_update(&p, 1.0, NULL);
@@ -158,4 +164,58 @@ int ctl_wait_rest(tlink *l, double expected_s, const char *what, int show_progre
             return st == FW_STATE_FAULT || st == FW_STATE_ESTOP ? EXIT_REJECTED : EXIT_OK;
         }
     }
+}
+
+int ctl_wait_rest(tlink *l, double expected_s, const char *what, int show_progress, proto_message *last)
+{
+    return wait_rest(l, expected_s, what, show_progress, last, 0);
+}
+
+int ctl_estop(tlink *l)
+{
+    /* No waiting for a STATUS first: the e-stop goes out at once. */
+    const int32_t v[1] = {0};
+    if (link_send(l, PM_ESTOP, v) != 0) {
+        ctl_error("cannot send on the bus");
+        return EXIT_BUS;
+    }
+    proto_message rej;
+    const int rc = ctl_answer(l, proto_table[PM_ESTOP].function, 0, NULL, &rej);
+    if (rc == EXIT_OK)
+        printf("ESTOP: acknowledged\n");
+    else if (rc == EXIT_REJECTED)
+        ctl_print_reject(&rej);
+    return rc;
+}
+
+int ctl_halt(tlink *l, const char *why)
+{
+    int rc = EXIT_INTERRUPTED;
+    /* Two interrupts before we got here (a double Ctrl-C) ask for the e-stop at once. */
+    if (tsectl_signals < 2) {
+        tsectl_interrupted = 0;
+        progress_break();
+        printf("%s%sstopping the robot (STOP) and waiting until it is at rest; interrupt again for an e-stop\n",
+               why ? why : "", why ? ": " : "");
+        fflush(stdout);
+        proto_message rej;
+        rc = ctl_simple(l, PM_STOP, &rej);
+        if (rc == EXIT_OK)
+            rc = wait_rest(l, 0, "stopping", 0, NULL, 1);
+        else if (rc == EXIT_REJECTED)
+            ctl_print_reject(&rej);
+    }
+    if (rc == EXIT_INTERRUPTED) {
+        tsectl_interrupted = 0;
+        progress_break();
+        ctl_error("interrupted again: e-stop");
+        rc = ctl_estop(l);
+        if (rc == EXIT_OK) {
+            printf("e-stop latched: clear, enable and home before moving again\n");
+            rc = EXIT_REJECTED;
+        }
+    }
+    if (rc != EXIT_OK && rc != EXIT_REJECTED)
+        ctl_error("the robot may still be moving: check with 'tsectl status'");
+    return rc;
 }

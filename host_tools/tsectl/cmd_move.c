@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "move_text.h"
 #include "text.h"
 #include "traj_file.h" /* the wire's pose range */
 
@@ -19,6 +20,7 @@ static const char *const axis[6] = {"X", "Y", "Z", "ROLL", "PITCH", "YAW"};
 static int parse_move(int argc, char **argv, move_args *a)
 {
     double value = 2.0;
+    int timed = 0; /* --duration or --speed given */
     a->kind = 0;
     a->wait = 0;
     int npos = 0;
@@ -26,6 +28,9 @@ static int parse_move(int argc, char **argv, move_args *a)
         if (!strcmp(argv[i], "--wait")) {
             a->wait = 1;
         } else if (!strcmp(argv[i], "--duration") || !strcmp(argv[i], "--speed")) {
+            if (timed)
+                return usage_error("move", "give --duration or --speed, not both", argv[i]);
+            timed = 1;
             a->kind = argv[i][2] == 's';
             if (i + 1 >= argc)
                 return usage_error("move", a->kind ? "--speed needs a plate speed in m/s" : "--duration needs seconds", NULL);
@@ -62,6 +67,19 @@ static int parse_move(int argc, char **argv, move_args *a)
     return EXIT_OK;
 }
 
+/* The MOVE_INFO that follows a move's ACK, in words (nothing from a controller that sends none). */
+static const char *info_words(tlink *l, int seq)
+{
+    static char text[256];
+    text[0] = 0;
+    const uint64_t end = link_now_us() + 300000u;
+    proto_message m;
+    while (link_now_us() < end && !tsectl_interrupted)
+        if (link_recv(l, &m, 50) == 1 && m.msg == PM_MOVE_INFO && m.v[0] == seq)
+            return move_info_text(&m, text, sizeof text);
+    return text;
+}
+
 int check_move(int argc, char **argv, int *done)
 {
     (void)done;
@@ -83,12 +101,16 @@ int run_move(tlink *l, int argc, char **argv)
         return EXIT_BUS;
     }
     proto_message ack, rej;
-    const int rc = ctl_answer(l, proto_table[PM_MOVE_COMMIT].function, seq, &ack, &rej);
+    int rc = ctl_answer(l, proto_table[PM_MOVE_COMMIT].function, seq, &ack, &rej);
     if (rc == EXIT_REJECTED)
         ctl_print_reject(&rej);
-    if (rc != EXIT_OK)
-        return rc;
-    const double T = ack.v[4] * 1e-3;
-    printf("move accepted: %.3f s planned\n", T);
-    return a.wait ? ctl_wait_rest(l, T, "moving", 1, NULL) : EXIT_OK;
+    if (rc == EXIT_OK) {
+        const double T = ack.v[4] * 1e-3;
+        printf("move accepted: %.3f s planned%s\n", T, info_words(l, seq));
+        rc = a.wait ? ctl_wait_rest(l, T, "moving", 1, NULL) : EXIT_OK;
+    }
+    /* Interrupted while waiting (for the answer too: the move may have been taken). */
+    if (rc == EXIT_INTERRUPTED)
+        ctl_halt(l, "interrupted");
+    return rc;
 }

@@ -44,15 +44,10 @@ static int start_point(tlink *l, telemetry *t)
     return -1;
 }
 
-/* STOP, then wait until at rest, whatever the user presses meanwhile (a second Ctrl-C gives up). */
+/* STOP, then wait until at rest; an interrupt meanwhile sends ESTOP (ctl_halt). */
 static void stop_at_rest(tlink *l)
 {
-    tsectl_interrupted = 0;
-    printf("stopping the robot (STOP) and waiting until it is at rest\n");
-    if (ctl_simple(l, PM_STOP, NULL) == EXIT_OK) {
-        proto_message last;
-        ctl_wait_rest(l, 0, "stopping", 0, &last);
-    }
+    ctl_halt(l, NULL);
 }
 
 static void row_error(const char *path, const traj_row *r, int i, const proto_message *rej, const char *when)

@@ -6,6 +6,7 @@
 #include <linux/can/raw.h>
 #include <net/if.h>
 #include <poll.h>
+#include <stdio.h>
 #include <string.h>
 #include <sys/ioctl.h>
 #include <sys/socket.h>
@@ -87,6 +88,17 @@ static void heartbeat(tlink *l)
     l->next_heartbeat_us = now + 100000u;
 }
 
+static void note_status(tlink *l, uint16_t counter)
+{
+    if (status_order_note(&l->statuses, counter) && !l->twin_warned) {
+        l->twin_warned = true;
+        fprintf(stderr,
+                "tsectl: warning: two controllers seem to answer as node %u (their STATUS counters interleave): "
+                "give each controller a node id of its own\n",
+                l->node);
+    }
+}
+
 int link_recv(tlink *l, proto_message *m, int timeout_ms)
 {
     const uint64_t end = link_now_us() + (uint64_t)timeout_ms * 1000u;
@@ -113,7 +125,13 @@ int link_recv(tlink *l, proto_message *m, int timeout_ms)
         f.id = (uint16_t)(fr.can_id & CAN_SFF_MASK);
         f.len = fr.can_dlc;
         memcpy(f.data, fr.data, 8);
-        if (proto_decode(&f, PROTO_TO_HOST, m).reason == FW_REASON_NONE && m->node == l->node)
+        if (proto_decode(&f, PROTO_TO_HOST, m).reason == FW_REASON_NONE && m->node == l->node) {
+            if (m->msg == PM_STATUS)
+                note_status(l, (uint16_t)m->v[6]);
             return 1;
+        }
+        proto_message other;
+        if (proto_decode(&f, PROTO_TO_CONTROLLER, &other).reason == FW_REASON_NONE && other.msg == PM_HOST_HEARTBEAT)
+            l->other_heartbeat_us = link_now_us();
     }
 }

@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "fw/proto.h"
+#include "status_order.h"
 
 typedef struct {
     int fd;
@@ -14,6 +15,10 @@ typedef struct {
     uint64_t next_heartbeat_us;
     uint8_t hb_counter;
     bool heartbeat; /* send HOST_HEARTBEAT every 100 ms while waiting */
+    /* What the bus shows beside our own traffic. */
+    uint64_t other_heartbeat_us; /* when another host's HOST_HEARTBEAT to the node was last seen (0: never) */
+    status_order statuses;       /* the node's STATUS counters (two controllers on one node id?) */
+    bool twin_warned;            /* the warning of two controllers on one node id was given */
 } tlink;
 
 int link_open(tlink *l, const char *iface, uint8_t node);
@@ -24,7 +29,9 @@ uint64_t link_now_us(void);
 int link_send(tlink *l, proto_msg msg, const int32_t *values);
 
 /* Waits up to timeout_ms for a frame from the node that decodes as a host-bound message.
- * Returns 1 with *m filled, 0 on timeout, -1 on an error. */
+ * Returns 1 with *m filled, 0 on timeout, -1 on an error.  Meanwhile it notes another host's
+ * heartbeats to the node, and warns once on stderr when the node's STATUS counters show two
+ * controllers answering under one node id. */
 int link_recv(tlink *l, proto_message *m, int timeout_ms);
 
 #endif

@@ -18,6 +18,8 @@ static void on_signal(int s)
 {
     (void)s;
     tsectl_interrupted = 1;
+    if (tsectl_signals < 100)
+        tsectl_signals = tsectl_signals + 1;
 }
 
 static const char *const traj_help =
@@ -38,7 +40,8 @@ static const char *const traj_help =
     "file with the controller's own validator: a row that would be refused exits 3 naming FILE:LINE,\n"
     "which limit and by how much, and nothing is sent.  If a row is still refused while streaming,\n"
     "or the controller faults, or you press Ctrl-C, tsectl sends STOP, waits until the robot is at\n"
-    "rest, and exits 3 (130 for Ctrl-C) naming the row: never part of a path left running.";
+    "rest, and exits 3 (130 for Ctrl-C or SIGTERM) naming the row: never part of a path left running.\n"
+    "A second Ctrl-C while it waits for rest sends ESTOP.";
 
 static const char *const params_help =
     "list              the parameters with their defaults, SI units, ranges and meaning (no bus)\n"
@@ -56,16 +59,23 @@ const tsectl_command tsectl_commands[] = {
      run_disable, 1},
     {"home", "home [--wait]",
      "Find the homing switches, then go to the home pose.  --wait follows it to rest (also when a homing\n"
-     "is already running: it waits for that one).",
+     "is already running: it waits for that one).\n"
+     "Ctrl-C (or SIGTERM) while it waits stops the robot (STOP), waits until it is at rest and exits 130;\n"
+     "a second Ctrl-C meanwhile sends ESTOP.",
      check_flags, run_home, 1},
     {"clear", "clear", "Leave fault or e-stop (the e-stop input must be closed); the drives stay off.", check_none,
      run_clear, 1},
-    {"stop", "stop [--wait]", "Controlled stop along the path; drops the trajectory queue.", check_flags, run_stop, 1},
+    {"stop", "stop [--wait]",
+     "Controlled stop along the path; drops the trajectory queue.  --wait follows it to rest; Ctrl-C\n"
+     "meanwhile sends STOP again, a second Ctrl-C sends ESTOP.",
+     check_flags, run_stop, 1},
     {"estop", "estop", "Emergency stop: stepping ends at once; latched until cleared.", check_none, run_estop, 0},
     {"move", "move X Y Z ROLL PITCH YAW [--duration S | --speed V] [--wait]",
      "Move the plate straight to a pose (metres, radians; roll about X first, yaw about Z last) in S\n"
      "seconds (default 2) or at plate speed V m/s; the controller stretches it to its limits and\n"
-     "validates the whole path first.  --wait follows it to rest with progress.",
+     "validates the whole path first.  --wait follows it to rest with progress.\n"
+     "Ctrl-C (or SIGTERM) while it waits stops the robot (STOP), waits until it is at rest and exits 130;\n"
+     "a second Ctrl-C meanwhile sends ESTOP.",
      check_move, run_move, 1},
     {"status", "status [--json]", "One STATUS: state, fault, homing, drives, queue, and the plate pose and slides.",
      check_status, run_status, 1},
@@ -91,7 +101,8 @@ static void usage(FILE *f)
                "--node N      controller node 1..15\n"
                "--timeout MS  how long to wait for an answer (default 2000)\n"
                "\nexit status: 0 acknowledged, 1 bus error, 2 usage or bad file (nothing sent), 3 refused,\n"
-               "4 no answer in time, 130 interrupted\n");
+               "4 no answer in time, 130 interrupted (a motion it started is stopped first; a second\n"
+               "interrupt sends ESTOP)\n");
 }
 
 int usage_error(const char *cmd, const char *what, const char *arg)

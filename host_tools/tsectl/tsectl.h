@@ -15,7 +15,9 @@
 
 enum { EXIT_OK = 0, EXIT_BUS = 1, EXIT_USAGE = 2, EXIT_REJECTED = 3, EXIT_TIMEOUT = 4, EXIT_INTERRUPTED = 130 };
 
+/* Set by SIGINT and SIGTERM (cleared by whoever acts on it); tsectl_signals counts them all. */
 extern volatile sig_atomic_t tsectl_interrupted;
+extern volatile sig_atomic_t tsectl_signals;
 extern int tsectl_timeout_ms;
 
 /* "tsectl: ..." on stderr, after ending a progress bar's line. */
@@ -36,6 +38,16 @@ int ctl_answer(tlink *l, int function, int seq, proto_message *ack, proto_messag
  * display (0: unknown, homing).  Returns EXIT_OK at rest without a fault, EXIT_REJECTED at rest in
  * fault or e-stop (named), EXIT_TIMEOUT, EXIT_INTERRUPTED.  *last gets the final STATUS if given. */
 int ctl_wait_rest(tlink *l, double expected_s, const char *what, int show_progress, proto_message *last);
+
+/* After an interrupt (SIGINT, SIGTERM), or another reason `why` (may be NULL) to end a motion the
+ * command started: STOP, then wait until the robot is at rest; an interrupt meanwhile sends ESTOP
+ * at once.  Says what it does.  Returns EXIT_OK at rest, EXIT_REJECTED at rest in fault or e-stop (the e-stop of
+ * a second interrupt included), or the exchange's failure (the robot may still move: said so).
+ * After an interrupt the caller exits EXIT_INTERRUPTED whatever it returns. */
+int ctl_halt(tlink *l, const char *why);
+
+/* Sends ESTOP at once (no STATUS first) and waits for its answer.  Returns an exit status. */
+int ctl_estop(tlink *l);
 
 /* Sends a one-field command with the next sequence number and waits for its answer; a REJECT is
  * explained.  Returns an exit status; *reject gets a REJECT if given. */

@@ -253,11 +253,35 @@ static int scissor_may_reach(const tse_geometry *g, int i, const tse_real C[3], 
     return z2 + near2 <= h_hi2 && z2 + far2 >= h_lo2;
 }
 
+tse_status tse_workspace_cell_volume(const tse_geometry *g, int n_r, int n_phi, int n_z, int i, int k,
+                                     tse_real *volume)
+{
+    *volume = (tse_real)NAN;
+    if (n_r < 2 || n_phi < 1 || n_z < 2 || i < 0 || i >= n_r || k < 0 || k >= n_z)
+        return TSE_INVALID;
+    const tse_real L = g->p.L, R = TSE_R(0.5) * L;
+    const tse_real dr = R / (tse_real)(n_r - 1), dz = L / (tse_real)(n_z - 1);
+    const tse_real r_lo = i == 0 ? TSE_R(0.0) : ((tse_real)i - TSE_R(0.5)) * dr;
+    const tse_real r_hi = i == n_r - 1 ? R : ((tse_real)i + TSE_R(0.5)) * dr;
+    const tse_real z_lo = k == 0 ? TSE_R(0.0) : ((tse_real)k - TSE_R(0.5)) * dz;
+    const tse_real z_hi = k == n_z - 1 ? L : ((tse_real)k + TSE_R(0.5)) * dz;
+    *volume = TSE_PI / (tse_real)n_phi * (r_hi * r_hi - r_lo * r_lo) * (z_hi - z_lo);
+    return TSE_OK;
+}
+
 tse_status tse_workspace_count(const tse_geometry *g, int n_r, int n_phi, int n_z, const tse_real orientation[3],
                                long *reachable, long *total)
 {
+    tse_real volume;
+    return tse_workspace_volume(g, n_r, n_phi, n_z, orientation, reachable, total, &volume);
+}
+
+tse_status tse_workspace_volume(const tse_geometry *g, int n_r, int n_phi, int n_z, const tse_real orientation[3],
+                                long *reachable, long *total, tse_real *volume)
+{
     *reachable = 0;
     *total = 0;
+    *volume = (tse_real)NAN;
     tse_real pose[6];
     if (tse_workspace_pose(g, n_r, n_phi, n_z, 0, 0, 0, orientation, pose) != TSE_OK)
         return TSE_INVALID;
@@ -268,8 +292,12 @@ tse_status tse_workspace_count(const tse_geometry *g, int n_r, int n_phi, int n_
     const tse_real margin = (sizeof(tse_real) < sizeof(double) ? TSE_R(1e-4) : TSE_R(1e-6)) * L;
     const tse_real h_lo = L * tse_sin(g->p.alpha_min) - margin, h_hi = L * tse_sin(g->p.alpha_max) + margin;
     const tse_real h_lo2 = h_lo > TSE_R(0.0) ? h_lo * h_lo : TSE_R(0.0), h_hi2 = h_hi * h_hi;
+    /* One addition per ring of cells, not per point: in float a sum of some 10^4 cells would
+     * lose digits the count keeps. */
+    tse_real sum = TSE_R(0.0);
     for (int k = 0; k < n_z; ++k)
-        for (int i = 0; i < n_r; ++i)
+        for (int i = 0; i < n_r; ++i) {
+            long ring = 0;
             for (int j = 0; j < n_phi; ++j) {
                 (void)tse_workspace_pose(g, n_r, n_phi, n_z, i, j, k, orientation, pose);
                 ++*total;
@@ -280,7 +308,15 @@ tse_status tse_workspace_count(const tse_geometry *g, int n_r, int n_phi, int n_
                     may = scissor_may_reach(g, s, C[s], h_lo2, h_hi2);
                 tse_ik_result res;
                 if (may && tse_ik(g, pose, NULL, &res) == TSE_OK)
-                    ++*reachable;
+                    ++ring;
             }
+            if (ring > 0) {
+                tse_real cell;
+                (void)tse_workspace_cell_volume(g, n_r, n_phi, n_z, i, k, &cell);
+                sum += (tse_real)ring * cell;
+                *reachable += ring;
+            }
+        }
+    *volume = sum;
     return TSE_OK;
 }

@@ -1,10 +1,14 @@
 """tse.can against tse-sim on vcan0 (run by tests/vcan/python_can.sh in the vcan harness, which
 starts the simulator with its log in $TSE_SIM_LOG).  The tests run in file order on one simulated
 robot, as a user's session would: enable, home, a move checked to 10 um by the simulator's plant,
-an unreachable pose refused with nothing moving, a short trajectory, parameters, e-stop, the
-watchdog on a killed heartbeat, and a motion stopped by leaving a with-block."""
+an unreachable pose refused with nothing moving, a short trajectory, Ctrl-C in waiting calls,
+parameters, e-stop, the watchdog on a killed heartbeat, and a motion stopped by leaving a
+with-block."""
+import _thread
 import os
 import re
+import signal
+import threading
 import time
 
 import pytest
@@ -80,6 +84,21 @@ def test_unreachable_pose_is_rejected_and_nothing_moves(ctl):
     assert motions() == before and ctl.status().state == "idle"
 
 
+def test_move_info_says_why_a_move_is_slower_than_asked(ctl):
+    ready(ctl)
+    start = plant_at_rest()
+    # 10 cm sideways in 0.2 s: the slides move about 1.1 m per m of y, so they would need several
+    # times their speed limit; the controller stretches the move and says which slide set the pace.
+    target = [start[0], start[1] + 0.1, *start[2:]]
+    planned = ctl.move(target, duration=0.2)
+    info = ctl.last_move
+    print(f"{planned:.3f} s planned, {info}")
+    assert planned > 0.2 and info.start == "rest"
+    assert info.bound in ("slide_vmax", "slide_amax") and 1 <= info.slide <= 6 and info.demand > 1.0
+    ctl.move(start, duration=2.0)
+    assert ctl.last_move == tcan.MoveInfo("rest", "asked", 0, 0.0)
+
+
 def test_short_trajectory_with_progress(ctl):
     start = plant_at_rest()
     n, rows, seen = 100, [], []
@@ -91,6 +110,81 @@ def test_short_trajectory_with_progress(ctl):
     assert seen[-1] == (n, n) and [s for s, _ in seen] == list(range(1, n + 1))
     assert_near(plant_at_rest(), rows[-1][1:])
     assert ctl.status().queue_depth == 0
+
+
+@pytest.fixture
+def ctrl_c():
+    """SIGINT raising KeyboardInterrupt, as at a terminal: a script's background job (the harness
+    runs this suite as one) starts with SIGINT ignored, and Python then leaves it so."""
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, old)
+
+
+def interrupt_main_after(*delays):
+    """KeyboardInterrupt in the main thread (as Ctrl-C raises it) after each delay, in s from now."""
+    def fire():
+        t0 = time.monotonic()
+        for d in delays:
+            time.sleep(max(0.0, t0 + d - time.monotonic()))
+            _thread.interrupt_main()
+    t = threading.Thread(target=fire, daemon=True)
+    t.start()
+    return t
+
+
+def ready(ctl):
+    """Idle, enabled and homed, whatever an earlier test left (so that one failure does not hide
+    what the next test checks)."""
+    st = ctl.status()
+    if st.state in ("fault", "estop"):
+        ctl.clear()
+        st = ctl.status()
+    if st.state == "disabled":
+        ctl.enable()
+    if not ctl.status().homed:
+        ctl.home(wait=True)
+    st = ctl.status()
+    assert (st.state, st.fault, st.homed) == ("idle", "none", True)
+
+
+def test_ctrl_c_in_a_waiting_move_stops_the_robot(ctl, ctrl_c):
+    ready(ctl)
+    target = [0.0, 0.0, 1.3, 0.0, 0.0, 0.0]
+    t0 = time.monotonic()
+    fire = interrupt_main_after(2.0)
+    with pytest.raises(KeyboardInterrupt):
+        ctl.move(target, duration=6.0, wait=True)
+    fire.join()
+    print(f"move interrupted, at rest after {time.monotonic() - t0:.2f} s")
+    st = ctl.status()
+    assert (st.state, st.fault) == ("idle", "none"), "the robot was stopped and waited for before the raise"
+    assert max(abs(a - b) for a, b in zip(plant_at_rest()[:3], target[:3])) > 0.01, "it stopped short"
+
+
+def test_second_ctrl_c_while_stopping_sends_estop(ctl, ctrl_c):
+    ready(ctl)
+    # A fast move, so that its stop takes a while (the ramp is sized from the slides' speed).
+    fire = interrupt_main_after(2.0, 2.1)
+    with pytest.raises(KeyboardInterrupt):
+        ctl.move([0.0, 0.0, 0.8, 0.0, 0.0, 0.0], speed=0.15, wait=True)
+    fire.join()
+    st = ctl.status()
+    assert (st.state, st.fault) == ("estop", "estop")
+    ctl.clear()
+    ctl.enable()
+
+
+def test_ctrl_c_in_a_waiting_homing_stops_it(ctl, ctrl_c):
+    ready(ctl)
+    fire = interrupt_main_after(1.5)
+    with pytest.raises(KeyboardInterrupt):
+        ctl.home(wait=True)
+    fire.join()
+    st = ctl.status()
+    assert (st.state, st.fault, st.homed) == ("idle", "none", False)
+    ctl.home(wait=True)
+    assert ctl.status().homed
 
 
 def test_parameters(ctl):

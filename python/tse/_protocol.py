@@ -15,6 +15,8 @@ ENUMS = {
     "reason": {0: "none", 1: "bad_length", 2: "unknown", 3: "range", 4: "state", 5: "not_homed", 6: "incomplete", 7: "stale", 8: "kinematics", 9: "queue_full", 10: "param_unknown", 11: "param_range", 12: "param_set", 13: "storage", 14: "timing"},
     "kin_status": {0: "ok", 1: "invalid", 2: "unreachable", 3: "below", 4: "alpha", 5: "stroke", 6: "singular", 7: "degenerate", 8: "noconverge"},
     "move_kind": {0: "duration", 1: "speed"},
+    "move_start": {0: "rest", 1: "blended", 2: "after"},
+    "move_bound": {0: "asked", 1: "plate_vmax", 2: "plate_amax", 3: "plate_jmax", 4: "plate_wmax", 5: "plate_dwmax", 6: "plate_jmax_angular", 7: "slide_vmax", 8: "slide_amax"},
 }
 
 # name: (function code, direction, length, fields); a field is
@@ -188,6 +190,18 @@ MESSAGES = {
         ("value", "i32", 2, -2147483648, 2147483647, "", 1.0, None,
          "value in the parameter's integer unit"),
     ), "Answer to PARAM_GET and PARAM_SET."),
+    "MOVE_INFO": (0x2A, "to_host", 6, (
+        ("seq", "u8", 0, 0, 255, "", 1.0, None,
+         "the accepted MOVE_COMMIT's sequence number"),
+        ("start", "u8", 1, 0, 2, "", 1.0, "move_start",
+         "how it starts: from rest, blended into the running move's deceleration, or after it (back to back, where a blend would break a limit)"),
+        ("bound", "u8", 2, 0, 8, "", 1.0, "move_bound",
+         "what set its pace: the duration or speed asked, a plate limit, or a slide limit that stretched it (slide_vmax also where the step rate is the lower limit)"),
+        ("slide", "u8", 3, 0, 6, "", 1.0, None,
+         "for slide_vmax and slide_amax, the slide 1..6 (A1, B1, A2, B2, A3, B3); 0 otherwise"),
+        ("demand", "u16", 4, 0, 65535, "per mille", 1.0, None,
+         "for slide_vmax and slide_amax, what that slide would have needed without the stretch (at the pace asked, or the plate limits' where slower), per mille of its limit (1140 = 14 % over; capped at 65535); 0 otherwise"),
+    ), "Sent right after the ACK of an accepted MOVE_COMMIT (whose detail is the planned duration): how the move starts and what set its pace."),
 }
 
 # Parameter id: (name, wire unit, min raw, max raw, default raw, doc).
@@ -223,7 +237,7 @@ PARAMS = (
     ("home_sw_4", "um", 0, 5000000, 200000, "where slide 4's homing switch trips: pressed at and below, released above; homing sets the slide's coordinate at the edge; once homed, a disagreement beyond 0.5 mm is a limit fault; a change needs homing again"),
     ("home_sw_5", "um", 0, 5000000, 200000, "where slide 5's homing switch trips: pressed at and below, released above; homing sets the slide's coordinate at the edge; once homed, a disagreement beyond 0.5 mm is a limit fault; a change needs homing again"),
     ("home_sw_6", "um", 0, 5000000, 200000, "where slide 6's homing switch trips: pressed at and below, released above; homing sets the slide's coordinate at the edge; once homed, a disagreement beyond 0.5 mm is a limit fault; a change needs homing again"),
-    ("step_pulse_ns", "ns", 100, 1000000, 2000, "STEP high time; refused unless the pulse ends within its step interrupt period and leaves a low time at least as long before the same slide's next step"),
+    ("step_pulse_ns", "ns", 100, 1000000, 2500, "STEP high time; refused unless the pulse ends within its step interrupt period and leaves a low time at least as long before the same slide's next step"),
     ("dir_setup_ns", "ns", 0, 1000000, 5000, "DIR stable before a STEP edge (rounded up to whole step interrupts, at least one)"),
     ("can_kbps", "kbit/s", 125, 1000, 500, "CAN bit rate: 125, 250, 500 or 1000; the board applies it at start-up, so it takes effect after PARAM_SAVE and a restart"),
 )

@@ -23,11 +23,13 @@ import threading
 import time
 from collections import namedtuple
 
-import can as _pycan
+from ._needs import need
+
+_pycan = need("can", "python3-can", "tse.can")
 
 from . import _protocol as _P
 
-__all__ = ["Controller", "Status", "Telemetry", "TseError", "Rejected", "Fault", "Timeout",
+__all__ = ["Controller", "Status", "Telemetry", "MoveInfo", "TseError", "Rejected", "Fault", "Timeout",
            "encode", "decode", "reject_words"]
 
 # --- The codec, driven by the table --------------------------------------------------------------
@@ -122,6 +124,13 @@ Telemetry.__doc__ = """One telemetry period: time (python-can's receive time of 
 slides (the six commanded slide positions A1, B1, A2, B2, A3, B3, m), pose (x, y, z in m, roll,
 pitch, yaw in rad, from the controller's forward kinematics; None before homing) and the state of
 the latest STATUS."""
+
+MoveInfo = namedtuple("MoveInfo", "start bound slide demand")
+MoveInfo.__doc__ = """How an accepted move starts ("rest", "blended" into the running move, or "after" it)
+and what set its pace ("asked", a plate limit's name such as "plate_vmax", or "slide_vmax" and
+"slide_amax" with the slide 1..6 (A1, B1, A2, B2, A3, B3) and what it would have needed without the
+stretch over its limit, 1.14 = 14 % over; slide 0 and demand 0 otherwise): the controller's
+MOVE_INFO, kept as Controller.last_move."""
 
 _AT_REST = ("idle", "disabled", "fault", "estop")
 _SLIDES = ("A1", "B1", "A2", "B2", "A3", "B3")
@@ -332,6 +341,7 @@ class Controller:
         self._send_lock = threading.Lock()
         self._cmd_lock = threading.RLock()
         self._status = None
+        self.last_move = None     # the MoveInfo of the latest move this object committed
         self._status_serial = 0
         self._answers = []        # (serial, name, fields) of ACK, REJECT and PARAM_VALUE, newest last
         self._serial = 0
@@ -434,7 +444,7 @@ class Controller:
             if name == "STATUS":
                 self._status = _status_of(v)
                 self._status_serial += 1
-            elif name in ("ACK", "REJECT", "PARAM_VALUE"):
+            elif name in ("ACK", "REJECT", "PARAM_VALUE", "MOVE_INFO"):
                 self._serial += 1
                 self._answers.append((self._serial, name, v))
                 del self._answers[:-512]
@@ -525,9 +535,11 @@ class Controller:
                 raise Rejected(v)
             return v
 
-    def _wait_rest(self, expected, what):
+    def _wait_rest(self, expected, what, settled=False):
         """tsectl's wait: follows STATUS until the controller is at rest after having been seen in
-        motion (or has been at rest for 2 s without moving).  Fault at rest in fault or e-stop."""
+        motion (or has been at rest for 2 s without moving; at once when settled: every STATUS from
+        now on comes after what the caller asked for, a STOP already acknowledged).  Fault at rest
+        in fault or e-stop."""
         t0 = time.monotonic()
         limit = 3.0 * (expected if expected > 0 else 60.0) + 60.0
         seen_motion = False
@@ -538,7 +550,7 @@ class Controller:
             st = self._fresh_status(min(self.timeout, limit - el + 0.1))
             if st.state not in _AT_REST:
                 seen_motion = True
-            elif seen_motion:
+            elif seen_motion or settled:
                 if st.state == "idle" and st.fault == "none":
                     return st
                 raise Fault(f"{what} ended {st.state} after {el:.2f} s, fault {st.fault}", st.state, st.fault)
@@ -566,11 +578,43 @@ class Controller:
 
     def stop(self, wait=False):
         """Controlled stop: the motion decelerates along its path and the trajectory queue is
-        dropped.  wait: until at rest."""
-        self._command("STOP")
-        if wait:
-            return self._wait_rest(0, "stopping")
+        dropped.  wait: until at rest (a KeyboardInterrupt meanwhile sends ESTOP, then is raised)."""
+        try:
+            self._command("STOP")
+            if wait:
+                return self._wait_rest(0, "stopping", settled=True)
+        except KeyboardInterrupt:
+            if wait:
+                self.estop()
+            raise
         return None
+
+    def _halt(self):
+        """Ends a motion this object started and may no longer follow (an exception, such as
+        KeyboardInterrupt, in a waiting call): STOP, then wait until at rest; a KeyboardInterrupt
+        meanwhile sends ESTOP and is raised.  A failing exchange is not raised: the caller raises
+        what interrupted it."""
+        try:
+            self.stop(wait=True)
+        except TseError:
+            pass
+
+    def _motion(self, start, what, wait):
+        """Runs start(), which sends the command that starts a motion and returns its planned
+        duration (0 when unknown), then with wait follows the motion to rest.  A refusal, timeout
+        or fault (TseError) is raised as it is; anything else raised meanwhile (KeyboardInterrupt
+        above all, even before the answer came: the motion may have been taken) stops the robot
+        first (_halt), then is raised."""
+        try:
+            planned = start()
+            if wait:
+                self._wait_rest(planned, what)
+            return planned
+        except TseError:
+            raise
+        except BaseException:
+            self._halt()
+            raise
 
     def estop(self):
         """Emergency stop, sent at once (no STATUS first): stepping is cut and an e-stop fault
@@ -579,20 +623,24 @@ class Controller:
 
     def home(self, wait=True):
         """Homes the six slides, then goes to the home pose.  wait: until at rest (a homing
-        already running is waited for)."""
-        try:
-            self._command("HOME")
-        except Rejected as e:
-            if not (wait and e.reason == "state" and e.state == "homing"):
-                raise
-        if wait:
-            self._wait_rest(0, "homing")
+        already running is waited for).  A KeyboardInterrupt while it waits stops the robot as in
+        move()."""
+        def start():
+            try:
+                self._command("HOME")
+            except Rejected as e:
+                if not (wait and e.reason == "state" and e.state == "homing"):
+                    raise
+            return 0
+        self._motion(start, "homing", wait)
 
     def move(self, pose, duration=None, speed=None, wait=True):
         """Moves the plate to pose (x, y, z in m; roll, pitch, yaw in rad) in a straight line in
         position, in duration s or at the plate speed speed m/s (neither: 2 s).  The controller
         validates the whole path before the first step.  Returns the planned duration (s, after
-        any stretching to the slide limits); wait: until at rest."""
+        any stretching to the slide limits); wait: until at rest.  A KeyboardInterrupt (Ctrl-C) while
+        it waits stops the robot (STOP, then waits until at rest; a second one sends ESTOP) before
+        it is raised."""
         if duration is not None and speed is not None:
             raise ValueError("give duration or speed, not both")
         kind = "speed" if speed is not None else "duration"
@@ -607,14 +655,30 @@ class Controller:
             raise ValueError("speed must be 1e-6 to 3.6 m/s" if kind == "speed" else
                              "duration must be 0.001 to 3600 s")
         p = _pose_raw(pose)
-        with self._cmd_lock:
-            seq = (self._fresh_status().last_seq + 1) & 0xFF
-            self._send_pose(seq, p)
-            ack = self._command("MOVE_COMMIT", seq=seq, kind=_enum_value("move_kind", kind), value=raw)
-        planned = ack["detail"] * 1e-3
-        if wait:
-            self._wait_rest(planned, "moving")
-        return planned
+
+        def start():
+            with self._cmd_lock:
+                seq = (self._fresh_status().last_seq + 1) & 0xFF
+                self._send_pose(seq, p)
+                mark = self._mark()
+                ack = self._command("MOVE_COMMIT", seq=seq, kind=_enum_value("move_kind", kind), value=raw)
+                self.last_move = self._move_info(mark, seq)
+            return ack["detail"] * 1e-3
+        return self._motion(start, "moving", wait)
+
+    def _move_info(self, mark, seq):
+        """The MOVE_INFO of the move committed under seq (it follows the ACK), or None from a
+        controller that sends none."""
+        def pick():
+            for serial, name, v in self._answers:
+                if serial > mark and name == "MOVE_INFO" and v["seq"] == seq:
+                    return MoveInfo(_enum("move_start", v["start"]), _enum("move_bound", v["bound"]), v["slide"],
+                                    v["demand"] / 1000.0)
+            return None
+        try:
+            return self._wait_for(pick, min(self.timeout, 0.3), "MOVE_INFO")
+        except Timeout:
+            return None
 
     def _send_pose(self, seq, raw):
         self._send("POSE_A", seq=seq, x=raw[0], y=raw[1])
@@ -689,10 +753,7 @@ class Controller:
         self._wait_rest(max(sum(dt for dt, _ in plan) * 1e-6 - sent, 0.1), "finishing")
 
     def _stop_at_rest(self):
-        try:
-            self.stop(wait=True)
-        except TseError:
-            pass
+        self._halt()
 
     def watch(self, timeout=None, maxlen=1000):
         """An iterator of Telemetry, one per telemetry period, from now on.  It ends when none

@@ -27,7 +27,9 @@ import os
 from collections import namedtuple
 from pathlib import Path
 
-import numpy as np
+from ._needs import need
+
+np = need("numpy", "python3-numpy", "tse.kin")
 
 __all__ = ["Status", "Params", "IKResult", "FKResult", "JacobianResult", "ik", "fk", "jacobian", "haf",
            "sigma_z", "workspace", "workspace_points", "library_path"]

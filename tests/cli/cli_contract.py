@@ -338,20 +338,52 @@ check("haf default: 9 heights inside the alpha stops, then the summary",
 rc, out, err = run(["haf", "--z", "5"])
 check("haf at an unreachable height: nan, and a nan summary",
       rc == 0 and "5,nan,nan,nan\n" in out and out.rstrip("\n").endswith("haf,nan,nan,nan,paper,11.487"), out)
+# The paper's figure is the prototype's: named for it (also when a file spells a default another way),
+# never for another design, whose summary is haf,mean,min,max (issue 21).
+same_proto = write("haf_proto.params", "eta_deg = 30   # the default, in degrees\nslide_vmax = 0.1\n")
+stroke06 = write("stroke06.params", "s_max = 0.6\n")
+longer = write("haf_long.params", "L = 2\n")
+for path, proto in ((same_proto, True), (stroke06, False), (longer, False)):
+    rc, out, err = run(["haf", "--params", path])
+    last = fields(out.rstrip("\n").split("\n")[-1])
+    if proto:
+        check(f"haf --params {os.path.basename(path)}: the paper named, as for the prototype",
+              rc == 0 and "(paper: 11.487)" in out and last[0] == "haf" and last[4:] == ["paper", "11.487"], out)
+    else:
+        check(f"haf --params {os.path.basename(path)}: the paper named nowhere, the summary haf,mean,min,max",
+              rc == 0 and "paper" not in out and "11.487" not in out and last[0] == "haf" and len(last) == 4, out)
+for args in (["sweep", "k1", "0.2", "0.3", "2", "--grid", "3,3,3"], ["workspace", "--points", "--grid", "3,3,3"]):
+    rc, out, err = run(args)
+    check(f"{args[0]}: the paper's figures named for the prototype", rc == 0 and "paper" in out and "0.28" in out, out)
+    rc, out, err = run(args + ["--params", stroke06])
+    check(f"{args[0]}: not for another design", rc == 0 and "paper" not in out and "11.487" not in out
+          and not re.search(r"(?<![\d.])0\.28(?!\d)", out), out)
 
 # ---------------------------------------------------------------- workspace
 rc, out, err = run(["workspace", "--grid", "2,1,2"])
 # Z = 0 puts the ball joints on the base plane (below); Z = L needs alpha = 90 deg, beyond alpha_max.
-check("workspace 2,1,2: none of the 4 points is reachable", rc == 0 and out.split("\n")[-2] == "0,4,0.000000", out)
+check("workspace 2,1,2: none of the 4 points is reachable", rc == 0 and out.split("\n")[-2] == "0,4,0.000000,0", out)
 for prec in ("double", "float"):
     rc, out, err = run(["workspace", "--grid", "5,4,5", "--precision", prec])
     last = fields(out.split("\n")[-2]) if out.endswith("\n") else []
-    ok = rc == 0 and len(last) == 3 and last[1] == "100" and 0 <= int(last[0]) <= 100
-    check(f"workspace {prec}: last line reachable,total,fraction with total = 5*4*5",
-          ok and abs(float(last[2]) - int(last[0]) / 100) < 1e-6 and re.fullmatch(r"\d\.\d{6}", last[2]), out)
-    check(f"workspace {prec}: the paper's figure is named", "paper: 0.28" in out, out)
+    ok = rc == 0 and len(last) == 4 and last[1] == "100" and 0 <= int(last[0]) <= 100
+    check(f"workspace {prec}: last line reachable,total,fraction,volume_m3 with total = 5*4*5",
+          ok and abs(float(last[2]) - int(last[0]) / 100) < 1e-6 and re.fullmatch(r"\d\.\d{6}", last[2])
+          and 0 < float(last[3]) < math.pi * PROTO["L"] ** 3 / 4, out)
+    check(f"workspace {prec}: the paper's figure is named for the prototype", "paper: 0.28" in out, out)
+    rc, out, err = run(["workspace", "--grid", "5,4,5", "--precision", prec, "--params", stroke06])
+    check(f"workspace {prec}: not for another design",
+          rc == 0 and "paper" not in out and not re.search(r"(?<![\d.])0\.28(?!\d)", out), out)
+# The cylinder and the cells, by hand: on a 5,4,5 grid the radii are L/8 apart, the heights L/4, the
+# rim arc of a sector pi L / 4.
+rc, out, err = run(["workspace", "--grid", "5,4,5"])
+L = PROTO["L"]
+check("workspace: the comments give the cylinder and the cells' size (the volume's resolution)",
+      f"r <= {L / 2:.6g} m, 0 <= Z <= {L:.6g} m ({math.pi * L ** 3 / 4:.6g} m^3)" in out and
+      f"{L / 8:.4g} m in r, {L / 4:.4g} m in Z, an arc of {math.pi * L / 4:.4g} m at the rim" in out, out)
 rc, out, err = run(["workspace", "--orientation", "0.05,-0.05,0.1", "--grid", "3,3,3"])
-check("workspace with an orientation", rc == 0 and re.fullmatch(r"\d+,27,\d\.\d{6}", out.split("\n")[-2] or ""), out)
+check("workspace with an orientation",
+      rc == 0 and re.fullmatch(r"\d+,27,\d\.\d{6},[0-9.e-]+", out.split("\n")[-2] or ""), out)
 rc, out, err = run(["workspace"])
 check("workspace default grid 21,36,41", rc == 0 and out.split("\n")[-2].split(",")[1] == str(21 * 36 * 41), out)
 
@@ -569,7 +601,7 @@ for prec, tol in (("double", 1e-9), ("float", 1e-4)):
     lines = out.split("\n")[:-1]
     head_at = [i for i, l in enumerate(lines) if not l.startswith("#")]
     check(f"sweep {prec}: comments, then the header, then 5 rows", rc == 0 and err == "" and len(head_at) == 6
-          and head_at[0] == len(lines) - 6 and lines[head_at[0]] == "param,value,haf,workspace", out)
+          and head_at[0] == len(lines) - 6 and lines[head_at[0]] == "param,value,haf,workspace,volume_m3", out)
     head, rows = table(out)
     want_v = [0.2, 0.4, 0.6000000000000001, 0.8, 1.0]
     check(f"sweep {prec}: k1 evenly from 0.2 to 1, the ends exact",
@@ -583,8 +615,9 @@ for prec, tol in (("double", 1e-9), ("float", 1e-4)):
         f = write(f"sweep_k1_{k1:g}.params", f"k1 = {k1!r}\n")
         rc2, w, err2 = run(["workspace", "--params", f, "--grid", "5,4,5", "--precision", prec])
         reach, total = (int(x) for x in w.split("\n")[-2].split(",")[:2])
-        check(f"sweep {prec}: workspace at k1 = {k1:g} is tse-kin workspace's fraction, unrounded",
-              float(r["workspace"]) == reach / total, f"{r['workspace']} vs {reach}/{total}")
+        check(f"sweep {prec}: workspace at k1 = {k1:g} is tse-kin workspace's fraction, unrounded, and its volume",
+              float(r["workspace"]) == reach / total and r["volume_m3"] == w.split("\n")[-2].split(",")[3],
+              f"{r['workspace']} vs {reach}/{total}, {r['volume_m3']} vs {w}")
 rc, one, err = run(["sweep", "k1", "0.2647", "0.2647", "1"])
 rc2, w, err2 = run(["workspace", "--grid", "16,24,32"])
 reach, total = (int(x) for x in w.split("\n")[-2].split(",")[:2])
@@ -598,13 +631,14 @@ check("sweep: --jobs 1 and --jobs 3 give the same rows in the same order",
 rc, out, err = run(["sweep", "k1", "0", "1", "3", "--grid", "3,3,3"])
 head, rows = table(out)
 check("sweep: an invalid design keeps its row with nan figures, the others go on",
-      rc == 0 and len(rows) == 3 and rows[0] == {"param": "k1", "value": "0", "haf": "nan", "workspace": "nan"}
+      rc == 0 and len(rows) == 3 and rows[0] == {"param": "k1", "value": "0", "haf": "nan", "workspace": "nan",
+                                                 "volume_m3": "nan"}
       and all(NUMBER.match(r["haf"]) and r["haf"] != "nan" for r in rows[1:]), out)
 check("sweep: the invalid design's comment names the parameter and its rule",
       "# k1 = 0: not a valid design: k1 = 0, needs 0 < k1 <= 1" in out, out)
 rc, out, err = run(["sweep", "eta_deg", "60", "95", "2", "--grid", "3,3,3"])
 check("sweep in degrees: the refusal speaks degrees", rc == 0 and "eta_deg = 95" in out and
-      "needs -90 < eta_deg < 90" in out and out.rstrip().endswith("eta_deg,95,nan,nan"), out)
+      "needs -90 < eta_deg < 90" in out and out.rstrip().endswith("eta_deg,95,nan,nan,nan"), out)
 rc, out, err = run(["sweep", "alpha_min_deg", "20", "80", "2", "--grid", "3,3,3"])
 check("sweep: a design refused for another parameter names that one",
       rc == 0 and "alpha_min_deg = 80: not a valid design: alpha_max = " in out, out)
@@ -735,7 +769,22 @@ for orient in ("0,0,0", "0,0.3490658503988659,0"):
     check(f"workspace --points ({orient}): statuses named, scissor 0 exactly when ok",
           all(r["status"] in STATUSES and (r["status"] == "ok") == (r["scissor"] == "0") for r in rows))
     check(f"workspace --points ({orient}): no negative zero, the count last",
-          "-0," not in out and out.split("\n")[-2].startswith(f"# reachable,total,fraction: {reach},120,"), out[-200:])
+          "-0," not in out and out.split("\n")[-2].startswith(f"# reachable,total,fraction,volume_m3: {reach},120,"),
+          out[-200:])
+    # The volume: the cells of the ok rows, each by hand (rings cut halfway between the radii
+    # 0, L/6, L/3, L/2 and layers halfway between the heights 0, L/4, .., L; 6 sectors), and
+    # workspace's own figure.
+    dr, dz = L / 6, L / 4
+    def cell(r, z):
+        i, k = round(r / dr), round(z / dz)
+        r_lo, r_hi = max(0, (i - 0.5) * dr), min(L / 2, (i + 0.5) * dr)
+        z_lo, z_hi = max(0, (k - 0.5) * dz), min(L, (k + 0.5) * dz)
+        return math.pi / 6 * (r_hi ** 2 - r_lo ** 2) * (z_hi - z_lo)
+    by_hand = sum(cell(math.hypot(float(r["x"]), float(r["y"])), float(r["z"])) for r in rows if r["status"] == "ok")
+    said = float(out.split("\n")[-2].split(": ")[1].split(",")[3].split()[0])
+    check(f"workspace --points ({orient}): its volume is the ok rows' cells by hand, and workspace's",
+          rel(said, by_hand) < 1e-12 and rel(float(w.split("\n")[-2].split(",")[3]), by_hand) < 1e-12,
+          f"{said} {w.splitlines()[-1]} vs {by_hand}")
 
 print(f"{passes} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)

@@ -46,6 +46,11 @@ check "move with a non-number exits 2" test $rc -eq 2
 check "the non-number's axis is named" grep -q "YAW is not a number" "$tmp/e"
 "$T" --iface nosuchcan0 --node 1 move 0 0 5 0 0 0 >/dev/null 2>"$tmp/e"; rc=$?
 check "move past the wire's range exits 2 naming the unit" grep -q "Z is outside the wire's range -4..4 m" "$tmp/e"
+"$T" --iface nosuchcan0 --node 1 move 0 0 1 0 0 0 --duration 1 --speed 0.1 >/dev/null 2>"$tmp/e"; rc=$?
+check "move with both --duration and --speed exits 2 before the bus" test $rc -eq 2
+check "both timing flags are named" grep -q "give --duration or --speed, not both" "$tmp/e"
+"$T" --iface nosuchcan0 --node 1 move 0 0 1 0 0 0 --speed 0.1 --speed 0.2 >/dev/null 2>"$tmp/e"
+check "a timing flag given twice exits 2" test $? -eq 2
 "$T" --iface nosuchcan0 --node 1 params set slide_vmax 3 >/dev/null 2>"$tmp/e"; rc=$?
 check "params set out of range exits 2" test $rc -eq 2
 check "the range error prints the unit and the range" grep -q "m/s" "$tmp/e"

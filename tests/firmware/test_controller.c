@@ -599,8 +599,8 @@ static void test_driver_timing(void **state)
     (void)state;
     start();
     assert_int_equal(F.timing_calls, 1);
-    assert_int_equal(F.pulse_ns, 2000);
-    assert_int_equal(F.dir_setup_ns, 5000);
+    assert_int_equal(F.pulse_ns, (uint32_t)fw_param_table[FP_STEP_PULSE_NS].def);
+    assert_int_equal(F.dir_setup_ns, (uint32_t)fw_param_table[FP_DIR_SETUP_NS].def);
     assert_int_equal(C.sg.cfg.dir_setup_ticks, 2); /* 5 us is half a tick: one, plus one of margin */
     const struct {
         int32_t ns;

@@ -8,6 +8,7 @@
 
 #include <cmocka.h>
 
+#include "fw/limits.h"
 #include "fw/params.h"
 #include "fw/types.h"
 
@@ -59,8 +60,23 @@ static void test_board_parameters(void **state)
     assert_int_equal(FP_CAN_KBPS, FP_COUNT - 1);
     for (int k = 0; k < 6; ++k)
         assert_int_equal(s.v[FP_HOME_SW_1 + k], 200000);
-    assert_int_equal(s.v[FP_STEP_PULSE_NS], 2000);
-    assert_int_equal(s.v[FP_DIR_SETUP_NS], 5000);
+    /* The Leadshine DM542's timing (User's Manual V1.0, section 10, Figure 11; docs/board.md):
+     * a pulse of at least 2.5 us (t3), DIR at least 5 us ahead of its edge (t2); and the
+     * defaults taken by the board's 200 kHz step interrupts (1 kHz segments). */
+    assert_true(s.v[FP_STEP_PULSE_NS] >= 2500);
+    assert_true(s.v[FP_DIR_SETUP_NS] >= 5000);
+    stepgen_config sc;
+    assert_int_equal(fw_stepgen_config_from_params(&s, 200000, 1000, &sc), 0);
+    /* docs/board.md's set with margin on both (1/32 microstepping): a slide steps at most every
+     * other 5 us interrupt, so a 3.5 us pulse fits; at the default rate it would not. */
+    fw_param_set m = s;
+    m.v[FP_STEPS_PER_M] = 640000;
+    m.v[FP_STEP_RATE_MAX] = 100000;
+    m.v[FP_STEP_PULSE_NS] = 3500;
+    assert_int_equal(fw_stepgen_config_from_params(&m, 200000, 1000, &sc), 0);
+    assert_int_equal(sc.min_step_interval, 2);
+    m.v[FP_STEP_RATE_MAX] = s.v[FP_STEP_RATE_MAX];
+    assert_int_equal(fw_stepgen_config_from_params(&m, 200000, 1000, &sc), -1);
     assert_int_equal(s.v[FP_CAN_KBPS], 500);
     before = s;
     /* CAN: four rates, anything else out of range, naming the parameter. */

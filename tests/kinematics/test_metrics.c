@@ -402,6 +402,111 @@ static void test_workspace_pose_invalid(void **state)
     EXPECT_STATUS(tse_workspace_count(&g, 3, 4, 5, bad, &reach, &total), TSE_INVALID);
 }
 
+/* The cells of the grid's points (tse_workspace_cell_volume) fill the cylinder r <= L/2,
+ * 0 <= Z <= L exactly, pi L^3 / 4, and a cell is what the hand algebra gives: on a 3-ring grid
+ * (dr = L/4) the rings are r = 0 .. L/8, L/8 .. 3L/8, 3L/8 .. L/2; on 5 layers (dZ = L/4) the
+ * floor and top cells are L/8 high, the others L/4. */
+static void test_workspace_cells_fill_cylinder(void **state)
+{
+    (void)state;
+    tse_params p;
+    tse_params_default(&p);
+    p.L = (tse_real)1.3;
+    tse_geometry g;
+    assert_int_equal(tse_geometry_init(&g, &p), TSE_PARAM_OK);
+    const double L = (double)p.L, pi = 3.14159265358979323846, tol = IS_FLOAT ? 1e-5 : 1e-13;
+    const int grids[][3] = {{2, 1, 2}, {3, 4, 5}, {16, 24, 32}, {21, 36, 41}, {7, 1, 3}};
+    for (size_t n = 0; n < sizeof grids / sizeof grids[0]; n++) {
+        const int *gr = grids[n];
+        double sum = 0;
+        for (int k = 0; k < gr[2]; k++)
+            for (int i = 0; i < gr[0]; i++) {
+                tse_real cell;
+                EXPECT_STATUS(tse_workspace_cell_volume(&g, gr[0], gr[1], gr[2], i, k, &cell), TSE_OK);
+                assert_true(cell > 0);
+                sum += (double)cell * gr[1];
+            }
+        EXPECT_NEAR(sum, pi * L * L * L / 4, tol * L * L * L);
+    }
+    const double ring[3][2] = {{0, L / 8}, {L / 8, 3 * L / 8}, {3 * L / 8, L / 2}};
+    const double layer[5] = {L / 8, L / 4, L / 4, L / 4, L / 8};
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 5; k++) {
+            tse_real cell;
+            EXPECT_STATUS(tse_workspace_cell_volume(&g, 3, 4, 5, i, k, &cell), TSE_OK);
+            const double want = pi / 4 * (ring[i][1] * ring[i][1] - ring[i][0] * ring[i][0]) * layer[k];
+            EXPECT_NEAR(cell, want, tol * want);
+        }
+    const int bad[][5] = {{1, 4, 5, 0, 0}, {3, 0, 5, 0, 0}, {3, 4, 1, 0, 0}, {3, 4, 5, -1, 0},
+                          {3, 4, 5, 3, 0}, {3, 4, 5, 0, -1}, {3, 4, 5, 0, 5}};
+    for (size_t n = 0; n < sizeof bad / sizeof bad[0]; n++) {
+        tse_real cell = 1;
+        EXPECT_STATUS(tse_workspace_cell_volume(&g, bad[n][0], bad[n][1], bad[n][2], bad[n][3], bad[n][4], &cell),
+                      TSE_INVALID);
+        assert_true(isnan(cell));
+    }
+}
+
+/* The reachable volume: the cells of the points tse_ik reaches, counted one by one here, and its
+ * count tse_workspace's.  A design scaled as a whole by 2 (L and the stroke; k1..k4, the stops and
+ * the margins are ratios and angles) reaches the same points, every length doubled exactly in
+ * binary, so its volume is 8 times as large while the fraction stays: the figure that tells designs
+ * of different size apart. */
+static void test_workspace_volume(void **state)
+{
+    (void)state;
+    const tse_real zero[3] = {0, 0, 0}, bad[3] = {0, (tse_real)NAN, 0};
+    const int nr = 9, nphi = 12, nz = 17;
+    for (int d = 0; d < N_STUDY_DESIGNS; d++) {
+        tse_params p = study_params(&study_designs[d]);
+        tse_geometry g;
+        assert_int_equal(tse_geometry_init(&g, &p), TSE_PARAM_OK);
+        double by_points = 0;
+        for (int k = 0; k < nz; k++)
+            for (int i = 0; i < nr; i++)
+                for (int j = 0; j < nphi; j++) {
+                    tse_real pose[6], cell;
+                    tse_ik_result res;
+                    (void)tse_workspace_pose(&g, nr, nphi, nz, i, j, k, zero, pose);
+                    EXPECT_STATUS(tse_workspace_cell_volume(&g, nr, nphi, nz, i, k, &cell), TSE_OK);
+                    if (tse_ik(&g, pose, NULL, &res) == TSE_OK)
+                        by_points += (double)cell;
+                }
+        long reach, total, plain, total2;
+        tse_real volume;
+        EXPECT_STATUS(tse_workspace_volume(&g, nr, nphi, nz, zero, &reach, &total, &volume), TSE_OK);
+        EXPECT_STATUS(tse_workspace(&g, nr, nphi, nz, zero, &plain, &total2), TSE_OK);
+        assert_int_equal(reach, plain);
+        assert_int_equal(total, total2);
+        EXPECT_NEAR(volume, by_points, (IS_FLOAT ? 1e-5 : 1e-13) * (double)p.L * p.L * p.L);
+
+        tse_params big = p;
+        big.L *= 2;
+        big.s_min *= 2;
+        big.s_max *= 2;
+        tse_geometry gb;
+        assert_int_equal(tse_geometry_init(&gb, &big), TSE_PARAM_OK);
+        long reach_b, total_b;
+        tse_real volume_b;
+        EXPECT_STATUS(tse_workspace_volume(&gb, nr, nphi, nz, zero, &reach_b, &total_b, &volume_b), TSE_OK);
+        if (reach_b != reach || fabs((double)volume_b - 8 * (double)volume) > (IS_FLOAT ? 1e-5 : 1e-12) * volume_b) {
+            print_error("%s scaled by 2: %ld points, %.9g m^3 against %ld, 8 x %.9g m^3\n", study_designs[d].name,
+                        reach_b, (double)volume_b, reach, (double)volume);
+            fail();
+        }
+    }
+    long reach = -1, total = -1;
+    tse_real volume = 0;
+    tse_params p;
+    tse_params_default(&p);
+    tse_geometry g;
+    assert_int_equal(tse_geometry_init(&g, &p), TSE_PARAM_OK);
+    EXPECT_STATUS(tse_workspace_volume(&g, 1, 4, 5, zero, &reach, &total, &volume), TSE_INVALID);
+    assert_true(reach == 0 && total == 0 && isnan(volume));
+    EXPECT_STATUS(tse_workspace_volume(&g, 3, 4, 5, bad, &reach, &total, &volume), TSE_INVALID);
+    assert_true(isnan(volume));
+}
+
 /* The workspace of designs the study compares, counted by the long-double reference. */
 static void test_workspace_designs_oracle(void **state)
 {
@@ -638,6 +743,8 @@ int main(void)
         cmocka_unit_test(test_workspace_tilted),
         cmocka_unit_test(test_workspace_points_and_count),
         cmocka_unit_test(test_workspace_pose_invalid),
+        cmocka_unit_test(test_workspace_cells_fill_cylinder),
+        cmocka_unit_test(test_workspace_volume),
         cmocka_unit_test(test_workspace_designs_oracle),
         cmocka_unit_test(test_vertical_profile),
         cmocka_unit_test(test_margins_oracle),

@@ -23,7 +23,8 @@ check "PARAM_SAVE writes the file back as text, with the new value and the old" 
 $T status >out.txt 2>&1
 check "status before homing says the pose is unknown" "grep -q 'pose unknown (not homed)' out.txt"
 
-$T enable >out.txt 2>&1; check "enable acknowledged" "[ $? -eq 0 ]"
+$T enable >out.txt 2>&1; rc=$?
+check "enable acknowledged, with no heartbeat warning while one runs" "[ $rc -eq 0 ] && ! grep -q 'heartbeat' out.txt"
 $T home --wait >out.txt 2>&1; rc=$?; check "homing ends at rest" "[ $rc -eq 0 ]"
 
 # Each target: the plate pose from the plant's forward kinematics within 10 um and 1e-5 rad.
@@ -38,6 +39,20 @@ for t in "0.1 -0.05 1.1 0.1 -0.05 0.2" "-0.15 0.1 0.7 -0.05 0.08 -0.3" "0.0 0.0 
   $T move $t --duration 1 --wait >out.txt 2>&1; rc=$?
   check "move to $t" "[ $rc -eq 0 ] && near $t"
 done
+
+# A move asked faster than the slides allow says why it takes longer; one committed during another
+# says it was blended into it.
+$T move 0.0 0.1 1.45 0.0 0.0 0.0 --duration 0.2 --wait >out.txt 2>&1; rc=$?
+sed -n 's/^/  | /;1p' out.txt
+check "a move too fast for the slides is stretched and says which slide and limit" \
+  "[ $rc -eq 0 ] && grep -Eq 'move accepted: [0-9.]+ s planned, slower than asked: the slides set the pace \(unstretched, slide [AB][123] \(scissor [123]\) would need [0-9.]+ times its (speed|acceleration) limit' out.txt"
+$T move 0.0 0.0 1.35 0.0 0.0 0.0 --duration 2 >out.txt 2>&1
+sleep 0.5
+$T move 0.02 0.0 1.45 0.0 0.0 0.0 --duration 2 --wait >out2.txt 2>&1; rc=$?
+sed -n 's/^/  | /;1p' out2.txt
+check "a move committed during another: accepted, blended into the running move" \
+  "[ $rc -eq 0 ] && grep -q 'blended into the running move' out2.txt && near 0.02 0.0 1.45 0.0 0.0 0.0"
+$T move 0.0 0.0 1.45 0 0 0 --duration 1 --wait >/dev/null 2>&1
 
 # Unreachable: refused with its reason, and nothing moves.
 before=$(grep -c 'motion accepted' sim.log)
@@ -90,6 +105,37 @@ $T trajectory again.csv >out.txt 2>&1; rc=$?
 [ $rc -eq 0 ] || sed 's/^/  | /' out.txt
 check "a new trajectory after the STOP is taken and runs to its end" "[ $rc -eq 0 ] && near 0 0.02 1.45 0 0 0"
 
+# Ctrl-C (SIGINT) or SIGTERM while tsectl waits for a motion it started: STOP, a wait until the
+# robot is at rest, exit 130; a second interrupt during that wait sends ESTOP.  (Background jobs of
+# a script start with SIGINT ignored; tsectl installs its own handler all the same.)
+interrupted() { # COMMAND...: run in the background, then signal $sig after 2 s (and $sig2 0.1 s later)
+  "$@" >int_out.txt 2>&1 &
+  waiter=$!
+  sleep 2
+  kill -$sig $waiter
+  [ -z "$sig2" ] || { sleep 0.1; kill -$sig2 $waiter; }
+  wait $waiter
+}
+sig=INT sig2= interrupted $T move 0 0 1.3 0 0 0 --duration 6 --wait; rc=$?
+$T status >out.txt 2>&1
+sed 's/^/  | /' int_out.txt
+check "Ctrl-C on move --wait: exit 130 once the robot is at rest (idle), short of the target" \
+  "[ $rc -eq 130 ] && grep -q 'state idle' out.txt && grep -q 'stopping: at rest' int_out.txt && ! near 0 0 1.3 0 0 0"
+# (A fast move, so that the stop takes a while: its ramp is sized from the slides' speed.)
+sig=INT sig2=INT interrupted $T move 0 0 0.8 0 0 0 --speed 0.15 --wait; rc=$?
+$T status >out.txt 2>&1
+sed 's/^/  | /' int_out.txt
+check "a second Ctrl-C while tsectl waits for the stop: ESTOP (exit 130, state estop)" \
+  "[ $rc -eq 130 ] && grep -q 'state estop' out.txt && grep -q 'ESTOP: acknowledged' int_out.txt"
+$T clear >/dev/null 2>&1; $T enable >/dev/null 2>&1
+sig=TERM sig2= interrupted $T home --wait; rc=$?
+$T status >out.txt 2>&1
+sed 's/^/  | /' int_out.txt
+check "SIGTERM on home --wait: exit 130 once the homing is stopped (idle, not homed)" \
+  "[ $rc -eq 130 ] && grep -q 'state idle' out.txt && grep -q 'not homed' out.txt"
+$T home --wait >out.txt 2>&1; rc=$?
+check "homing again after the interrupted one" "[ $rc -eq 0 ]"
+
 # E-stop during a move: stepping ends within one control tick (1 ms).
 $T move 0 0 1.0 0 0 0 --duration 3 >out.txt 2>&1
 sleep 1
@@ -117,9 +163,50 @@ check "the plant saw no physical breach all along" "! grep -q 'plant:' sim.log"
 check "no step reported after the e-stop: none before its clearing, and the motion after it is not one" \
   "! grep -q 'after the e-stop' sim.log && [ \$(grep -c 'motion accepted' sim.log) -gt 6 ]"
 
+$T clear >/dev/null 2>&1
+$T enable >out.txt 2>&1; rc=$?
+sed 's/^/  | /' out.txt
+check "ENABLE with no host heartbeat on the bus: acknowledged, with a warning naming the watchdog" \
+  "[ $rc -eq 0 ] && grep -q 'no host heartbeat on the bus' out.txt && grep -q \"fault 'watchdog'\" out.txt"
+$T disable >/dev/null 2>&1
 kill -INT $sim
+
 sleep 0.5
-kill $dump
+check "tse-sim's closing lines say how many control periods ran late, by how much, and what that means" \
+  "grep -q 'tse-sim: stopped after [0-9]* control periods' sim.log && \
+   grep -Eq 'none of them ran late|ran late: the host scheduled tse-sim up to [0-9]+ ms behind.*the simulated motion is exact' sim.log"
+
+kill $dump # the DBC is node 1's
+
+# tse-sim --board-rules refuses a move committed during another, as the board does.
+tse-sim --iface vcan0 --node 3 --board-rules >board.log 2>&1 &
+bsim=$!
+sleep 0.5
+B="tsectl --iface vcan0 --node 3 --timeout 5000"
+$B heartbeat &
+bhb=$!
+$B enable >/dev/null 2>&1 && $B home --wait >/dev/null 2>&1
+$B move 0.0 0.0 1.3 0.0 0.0 0.0 --duration 2 >/dev/null 2>&1
+sleep 0.5
+$B move 0.02 0.0 1.4 0.0 0.0 0.0 --duration 2 >out.txt 2>&1; rc=$?
+sed -n 's/^/  | /;1p' out.txt
+check "tse-sim --board-rules: a move during another is refused (state), as on the board" \
+  "[ $rc -eq 3 ] && grep -q 'rejected: state: MOVE_COMMIT is not taken while the controller is moving' out.txt && \
+   grep -q \"the board's rules\" board.log"
+kill $bhb
+kill -INT $bsim
+
+# Two controllers answering as one node id: tsectl says so, naming the node.
+tse-sim --iface vcan0 --node 5 >twin1.log 2>&1 &
+twin1=$!
+sleep 0.7
+tse-sim --iface vcan0 --node 5 >twin2.log 2>&1 &
+twin2=$!
+sleep 0.5
+tsectl --iface vcan0 --node 5 --timeout 5000 watch --count 12 >out.txt 2>&1
+check "two controllers on node 5 are detected (a warning naming the node)" \
+  "grep -q 'two controllers seem to answer as node 5' out.txt"
+kill -INT $twin1 $twin2
 
 # Figures.
 echo "figure: command taken to first step, per motion in order (homing, moves, trajectory; simulated time, ms): $(awk '/first step/ { printf "%s ", $4 }' sim.log)"
@@ -127,7 +214,7 @@ echo "figure: $(grep 'e-stop taken' sim.log | tail -1 | sed 's/tse-sim: //')"
 awk '/ 201#/ { n++; t = substr($1, 2, length($1) - 2); if (!f) f = t; l = t } END { if (l > f) printf "figure: telemetry: %.1f STATUS frames per second\n", (n - 1) / (l - f) }' dump.log
 awk -v a="$t0" -v b="$t1" '{ t = substr($1, 2, length($1) - 2); if (t >= a && t <= b) { split($3, f, "#"); bits += 47 + 4 * length(f[2]) + 20 } }
    END { if (b > a) printf "figure: bus load while streaming %.1f%% of 500 kbit/s (%d s)\n", bits / (b - a) / 5000, b - a }' dump.log
-echo "figure: $(tail -1 sim.log)"
+grep -E "tse-sim: (stopped after|none of them|[0-9]+ of them)" sim.log | sed "s/^/figure: /"
 echo "=== dump begin"
 cat dump.log
 echo "=== dump end"

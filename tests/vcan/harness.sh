@@ -9,6 +9,17 @@
 # 'N passed, M failed'.  Its output comes back on stdout; the exit status is the scenario's.
 # WORKDIR holds what the harness builds or keeps (the kernel, the initramfs, the console log).
 #
+# The board: with --board ELF (and HARNESS_BOARD_ARGS, words passed to emu/run.sh after its own,
+# such as "--bitrate 250000" or "-- -global tse-rig.initial-m=0.3"), the scenario's controller is
+# that image on the emulated STM32F407 (emu/, docs/emulator.md) instead of a tse-sim it starts:
+# the emulator runs on this host (emu/run.sh, the binary emu/build.sh built; a fresh flash file
+# each run; its USART console in WORKDIR/board/console.log), and its CAN channel reaches vcan0
+# through tse-canbridge (here, or in the VM over a virtio-serial port).  The scenario's
+# environment has TSE_TARGET=board and TSE_RIG, the rig channel tse-rig uses (in the VM, the
+# virtio port that leads to it); without --board TSE_TARGET=sim.  tse-canbridge and tse-rig must
+# be among the BINARYs.  No emulator built, or no tse-canbridge or tse-rig, is an error naming it
+# (exit 2) before anything is set up.
+#
 # Data files: each --file PATH, and each path in HARNESS_FILES (separated by spaces), is copied
 # into the scenario's working directory under its own name, so the scenario opens it as
 # ./NAME.  That directory is /tmp in the VM and a fresh WORKDIR/run on vcan0, so a scenario is
@@ -57,11 +68,12 @@ set -u
 
 usage() {
   cat <<'EOF'
-usage: harness.sh [--file PATH]... [--python DIR]... SCENARIO WORKDIR [BINARY...]
+usage: harness.sh [--file PATH]... [--python DIR]... [--board ELF] SCENARIO WORKDIR [BINARY...]
 Runs SCENARIO on vcan0 (here, or in a QEMU VM when this kernel has no CAN) with the BINARIES on its
 PATH; each --file PATH (and each path in HARNESS_FILES) is copied into its working directory.
 With --python DIR (and HARNESS_PYTHON) the scenario can run python3 (Debian's, with python-can and
 pytest) with each DIR on PYTHONPATH (in the VM: /py/NAME of DIR).
+With --board ELF the controller is that image on the emulated board (TSE_TARGET=board, TSE_RIG).
 Environment: HARNESS_FILES, HARNESS_PYTHON, HARNESS_LIVE=1, HARNESS_TIMEOUT=SECONDS (default 480);
 see the header of this script.
 EOF
@@ -72,6 +84,7 @@ die() { echo "harness: $*" >&2; exit 2; }
 files=()
 read -r -d '' -a env_files <<<"${HARNESS_FILES:-}" # spaces, tabs or newlines between paths
 files+=(${env_files[@]+"${env_files[@]}"})
+board=
 pydirs=()
 read -r -d '' -a env_pydirs <<<"${HARNESS_PYTHON:-}"
 pydirs+=(${env_pydirs[@]+"${env_pydirs[@]}"})
@@ -81,9 +94,11 @@ while [ $# -gt 0 ]; do
     --file=*) files+=("${1#--file=}"); shift ;;
     --python) [ $# -ge 2 ] || die "--python needs a DIR"; pydirs+=("$2"); shift 2 ;;
     --python=*) pydirs+=("${1#--python=}"); shift ;;
+    --board) [ $# -ge 2 ] || die "--board needs an ELF image"; board=$2; shift 2 ;;
+    --board=*) board=${1#--board=}; shift ;;
     -h | --help) usage; exit 0 ;;
     --) shift; break ;;
-    -*) die "unknown option '$1' (options: --file PATH, --python DIR, --help)" ;;
+    -*) die "unknown option '$1' (options: --file PATH, --python DIR, --board ELF, --help)" ;;
     *) break ;;
   esac
 done
@@ -123,6 +138,22 @@ for d in ${pydirs[@]+"${pydirs[@]}"}; do
   pyseen[$name]=$d
   pypath+=("$abs")
 done
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+if [ -n "$board" ]; then
+  [ -f "$board" ] && [ -r "$board" ] || die "board image not found: $board"
+  board=$(readlink -f "$board")
+  bridge_bin= rig_bin=
+  for b in "$@"; do
+    case $(basename "$b") in tse-canbridge) bridge_bin=$(readlink -f "$b") ;; tse-rig) rig_bin=$(readlink -f "$b") ;; esac
+  done
+  [ -n "$bridge_bin" ] || die "--board needs tse-canbridge among the BINARYs"
+  [ -n "$rig_bin" ] || die "--board needs tse-rig among the BINARYs"
+  emu_dir=${TSE_EMU_DIR:-$here/../../emu} # another tree's emu/ (its run.sh and build.sh), for trying one
+  emu_qemu=${TSE_EMU_QEMU:-$("$emu_dir/build.sh" --path 2>/dev/null)} ||
+    die "the board emulator is not built for emu/ as it is: run emu/build.sh (about 20 minutes, once)"
+  [ -x "$emu_qemu" ] || die "the board emulator $emu_qemu is not executable"
+  read -r -a board_args <<<"${HARNESS_BOARD_ARGS:-}"
+fi
 limit=${HARNESS_TIMEOUT:-480}
 case $limit in
   '' | *[!0-9]*) die "HARNESS_TIMEOUT must be a whole number of seconds, not '$limit'" ;;
@@ -164,10 +195,47 @@ report_timeout() {
   fi
 }
 
+# --- The emulated board, on this host either way: its two channels are UNIX sockets in
+# WORKDIR/board, which tse-canbridge and tse-rig reach here or through the VM's virtio ports.
+board_pid=
+board_stop() {
+  [ -z "$board_pid" ] || { kill -TERM -- "-$board_pid" 2>/dev/null; sleep 0.2; kill -KILL -- "-$board_pid" 2>/dev/null; }
+  board_pid=
+}
+board_start() {
+  local d="$work/board"
+  rm -rf "$d"
+  mkdir -p "$d"
+  TSE_EMU_QEMU=$emu_qemu setsid "$emu_dir/run.sh" --elf "$board" --can "$d/can.sock" --rig "$d/rig.sock" \
+    --flash "$d/flash.bin" --console "$d/console.log" ${board_args[@]+"${board_args[@]}"} \
+    </dev/null >"$d/emulator.log" 2>&1 &
+  board_pid=$!
+  for _ in $(seq 1 300); do # up to 30 s for both sockets
+    [ -S "$d/can.sock" ] && [ -S "$d/rig.sock" ] && break
+    kill -0 "$board_pid" 2>/dev/null || break
+    sleep 0.1
+  done
+  if ! [ -S "$d/can.sock" ] || ! [ -S "$d/rig.sock" ]; then
+    echo "harness: the board emulator did not start:"
+    tail -20 "$d/emulator.log"
+    board_stop
+    exit 1
+  fi
+  echo "harness: board $(basename "$board") on the emulator ($emu_qemu)"
+}
+
 # --- vcan0 on this kernel.
 if [ "$(id -u)" -eq 0 ] && ip link add dev vcan0 type vcan 2>/dev/null; then
   ip link set vcan0 up
   echo "harness: vcan0 on this kernel"
+  export TSE_TARGET=sim
+  bridge_pid=
+  if [ -n "$board" ]; then
+    board_start
+    "$bridge_bin" --channel "$work/board/can.sock" --iface vcan0 2>"$work/board/bridge.log" &
+    bridge_pid=$!
+    export TSE_TARGET=board TSE_RIG="$work/board/rig.sock"
+  fi
   for b in "$@"; do PATH="$(dirname "$(readlink -f "$b")"):$PATH"; done
   if [ ${#pypath[@]} -gt 0 ]; then # Debian's python3 first on PATH, the DIRs themselves on PYTHONPATH
     mkdir -p "$work/python-bin"
@@ -198,6 +266,8 @@ if [ "$(id -u)" -eq 0 ] && ip link add dev vcan0 type vcan 2>/dev/null; then
   stop() {
     [ -z "$wpid" ] || kill -KILL -- "-$wpid" 2>/dev/null
     [ -z "$spid" ] || kill -KILL -- "-$spid" 2>/dev/null
+    [ -z "$bridge_pid" ] || kill -TERM "$bridge_pid" 2>/dev/null
+    board_stop
     ip link del vcan0 2>/dev/null
   }
   trap 'stop; exit 130' INT
@@ -230,6 +300,8 @@ if [ "$(id -u)" -eq 0 ] && ip link add dev vcan0 type vcan 2>/dev/null; then
   done
   kill -KILL -- "-$spid" 2>/dev/null
   spid=
+  [ -z "$bridge_pid" ] || { kill -TERM "$bridge_pid" 2>/dev/null; wait "$bridge_pid" 2>/dev/null; }
+  board_stop
   ip link del vcan0
   trap - INT TERM HUP
   [ -z "$timed_out" ] || report_timeout "$trace"
@@ -264,12 +336,18 @@ root="$work/root"
 rm -rf "$root" "$work/pyroot" "$work/initrd-python.img" # the last two: a run with --python
 mkdir -p "$root"/{bin,proc,sys,dev,tmp,mods}
 cp "$(command -v busybox)" "$root/bin/busybox"
-for a in sh mount insmod ip sleep cat echo poweroff ls grep kill pidof head tail wc sed awk date seq cut \
+for a in sh mount insmod ip sleep cat echo poweroff ls grep kill pidof head tail wc sed awk date seq cut basename dirname \
          setsid; do
   ln -sf busybox "$root/bin/$a"
 done
 cp "$mods/net/can/can.ko" "$mods/net/can/can-raw.ko" "$mods/drivers/net/can/dev/can-dev.ko" \
    "$mods/drivers/net/can/vcan.ko" "$root/mods/"
+if [ -n "$board" ]; then # the virtio-serial ports that lead to the board's channels
+  for m in virtio/virtio virtio/virtio_ring virtio/virtio_pci_legacy_dev virtio/virtio_pci_modern_dev \
+           virtio/virtio_pci char/virtio_console; do
+    cp "$mods/drivers/$m.ko" "$root/mods/"
+  done
+fi
 for b in "$@" /usr/bin/cansend /usr/bin/candump; do
   cp "$b" "$root/bin/"
   for lib in $(ldd "$b" | awk '/=>/{print $3} /^\t\/lib/{print $1}'); do
@@ -352,6 +430,7 @@ if [ ${#pypath[@]} -gt 0 ]; then
 fi
 cp "$scenario" "$root/scenario.sh"
 printf 'limit=%d\n' "$limit" >"$root/harness.conf"
+printf 'board=%s\n' "${board:+1}" >>"$root/harness.conf"
 printf "trace_ps4='%s'\n" "$PS4_TRACE" >>"$root/harness.conf"
 cat >"$root/init" <<'INIT'
 #!/bin/sh
@@ -361,6 +440,31 @@ mount -t devtmpfs dev /dev
 for m in can can-dev can-raw vcan; do insmod /mods/$m.ko; done
 ip link add dev vcan0 type vcan && ip link set vcan0 up
 . /harness.conf
+export TSE_TARGET=sim
+if [ -n "$board" ]; then
+  # The board's channels: virtio-serial ports named tse.can and tse.rig.
+  for m in virtio_ring virtio virtio_pci_legacy_dev virtio_pci_modern_dev virtio_pci virtio_console; do
+    insmod /mods/$m.ko
+  done
+  can_port= rig_port=
+  for _ in $(seq 1 50); do
+    for n in /sys/class/virtio-ports/*/name; do
+      [ -e "$n" ] || continue
+      case $(cat "$n") in
+        tse.can) can_port=/dev/$(basename "$(dirname "$n")") ;;
+        tse.rig) rig_port=/dev/$(basename "$(dirname "$n")") ;;
+      esac
+    done
+    [ -n "$can_port" ] && [ -n "$rig_port" ] && [ -e "$can_port" ] && [ -e "$rig_port" ] && break
+    sleep 0.1
+  done
+  if [ -z "$can_port" ] || [ -z "$rig_port" ]; then
+    echo "harness: the board's virtio ports did not appear in the VM"
+  else
+    tse-canbridge --channel "$can_port" --iface vcan0 2>/tmp/bridge.log &
+    export TSE_TARGET=board TSE_RIG=$rig_port
+  fi
+fi
 echo "=== scenario begin"
 echo "figure: VM boot, kernel start to scenario: $(cut -d' ' -f1 /proc/uptime) s"
 INIT
@@ -414,15 +518,25 @@ if [ ${#pypath[@]} -gt 0 ]; then
 fi
 
 # QEMU's own limit stays above the scenario's, so that a time-out inside the VM gets reported.
+vm_devices=()
+if [ -n "$board" ]; then
+  board_start
+  trap 'board_stop' EXIT
+  vm_devices=(-device virtio-serial-pci
+              -chardev "socket,id=boardcan,path=$work/board/can.sock" -device virtserialport,chardev=boardcan,name=tse.can
+              -chardev "socket,id=boardrig,path=$work/board/rig.sock" -device virtserialport,chardev=boardrig,name=tse.rig)
+fi
 t0=$(date +%s.%N)
 if [ -n "${HARNESS_LIVE:-}" ]; then
   # Live: the scenario's output as it happens (progress bars included).
   timeout $((limit + 120)) qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$vmlinuz" \
-    -initrd "$initrd" -append "console=ttyS0 quiet panic=-1" 2>&1 | tee "$work/console.log" |
+    -initrd "$initrd" -append "console=ttyS0 quiet panic=-1" ${vm_devices[@]+"${vm_devices[@]}"} 2>&1 |
+    tee "$work/console.log" |
     sed -u -n '/=== scenario begin/,/=== scenario end/{/=== scenario/d;p}'
 else
   timeout $((limit + 120)) qemu-system-x86_64 -accel tcg -m 512 -nographic -no-reboot -kernel "$vmlinuz" \
-    -initrd "$initrd" -append "console=ttyS0 quiet panic=-1" >"$work/console.log" 2>&1
+    -initrd "$initrd" -append "console=ttyS0 quiet panic=-1" ${vm_devices[@]+"${vm_devices[@]}"} \
+    >"$work/console.log" 2>&1
 fi
 t1=$(date +%s.%N)
 [ -n "${HARNESS_LIVE:-}" ] || sed -n '/=== scenario begin/,/=== scenario end/p' "$work/console.log" | sed '1d;$d' | tr -d '\r'

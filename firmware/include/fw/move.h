@@ -39,6 +39,11 @@ typedef struct {
     fw_profile prof;    /* of u, D = 1 */
     uint32_t segments;  /* control segments; the last one ends exactly at prof.T */
     tse_real stretch;   /* time factor the slide limits imposed (1: none) */
+    uint8_t bound;      /* fw_move_bound: what set the pace */
+    uint8_t bound_slide;/* for a slide bound, the slide 1..6 (A1, B1, A2, B2, A3, B3); else 0 */
+    tse_real bound_ratio; /* for a slide bound, its demand at the pace before the stretch (the
+                           * request's, or the plate limits' where slower) over its limit
+                           * parameter (> 1); else 0 */
     tse_real v_peak;    /* the fastest any slide goes along it [m/s], as validation found */
     tse_real q_from[6]; /* slides at the start */
     tse_real q_end[6];  /* slides at the end, as validation solved them */
@@ -64,7 +69,8 @@ void fw_plan_clear(fw_plan_result *res);
 void fw_plan_timing(fw_plan_result *res, fw_slide_worst w, tse_real scale);
 
 /* Plans from pose `from` (whose slides are q_from) to `to`.  kind/value: the duration [s], or the
- * plate speed [m/s] (rotation-only moves then use the angular limit).  Returns 0 on success. */
+ * plate speed [m/s] (rotation-only moves then use the angular limit).  Returns 0 on success, with
+ * what set the pace in bound, bound_slide and bound_ratio. */
 int fw_move_plan(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const tse_real from[6],
                  const tse_real to[6], fw_move_kind kind, tse_real value, const tse_real q_from[6],
                  fw_plan_result *res);

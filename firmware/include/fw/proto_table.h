@@ -63,6 +63,7 @@ typedef enum {
     PM_FK_B,
     PM_FK_C,
     PM_PARAM_VALUE,
+    PM_MOVE_INFO,
     PM_COUNT
 } proto_msg;
 
@@ -88,5 +89,16 @@ extern const proto_enum_entry proto_fault_names[];
 extern const proto_enum_entry proto_reason_names[];
 extern const proto_enum_entry proto_kin_status_names[];
 extern const proto_enum_entry proto_move_kind_names[];
+extern const proto_enum_entry proto_move_start_names[];
+extern const proto_enum_entry proto_move_bound_names[];
+
+/* Every enumeration above, with the key the Python tables give it and the title the protocol
+ * document gives it; ends with a NULL table. */
+typedef struct {
+    const proto_enum_entry *table;
+    const char *key;
+    const char *title;
+} proto_enum_def;
+extern const proto_enum_def proto_enums[];
 
 #endif

@@ -34,6 +34,29 @@ typedef enum {
     FW_FAULT_COUNT
 } fw_fault;
 
+/* How an accepted move starts (MOVE_INFO frame). */
+typedef enum {
+    FW_START_REST = 0,    /* from rest */
+    FW_START_BLENDED = 1, /* blended into the running move's deceleration */
+    FW_START_AFTER = 2,   /* after the running move, back to back: a blend would break a limit */
+    FW_START_COUNT
+} fw_move_start;
+
+/* What set an accepted move's pace (MOVE_INFO frame): the request itself, a plate limit, or a slide
+ * limit that stretched it.  Named after the limit parameters. */
+typedef enum {
+    FW_BOUND_ASKED = 0,        /* the duration or plate speed asked for */
+    FW_BOUND_PLATE_VMAX = 1,
+    FW_BOUND_PLATE_AMAX = 2,
+    FW_BOUND_PLATE_JMAX = 3,
+    FW_BOUND_PLATE_WMAX = 4,
+    FW_BOUND_PLATE_DWMAX = 5,
+    FW_BOUND_PLATE_JMAX_ANGULAR = 6, /* the rotation's ramps: plate_dwmax x plate_jmax / plate_amax */
+    FW_BOUND_SLIDE_VMAX = 7,   /* a slide's speed limit (slide_vmax, or the step rate where lower) */
+    FW_BOUND_SLIDE_AMAX = 8,   /* a slide's acceleration limit */
+    FW_BOUND_COUNT
+} fw_move_bound;
+
 /* Why a command was refused (REJECT frame). */
 typedef enum {
     FW_REASON_NONE = 0,

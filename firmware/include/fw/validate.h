@@ -32,6 +32,7 @@
 
 typedef struct {
     tse_real v_ratio, a_ratio; /* worst speed and acceleration over the limits given */
+    uint8_t v_slide, a_slide;  /* the slides (q index 0..5) of each */
     fw_slide_worst worst;      /* the worse of the two and its slide */
     tse_real q_end[6];         /* slides at the move's end pose */
     uint32_t pieces;           /* pieces tried (fw_validate) */

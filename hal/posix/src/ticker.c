@@ -28,6 +28,9 @@ static int start(void *ctx, uint32_t control_hz, void (*control)(void *), uint32
             continue; /* a signal: check stop */
         if (expirations > 1)
             t->overruns += expirations - 1;
+        if (expirations > t->max_behind)
+            t->max_behind = expirations;
+        t->periods += expirations;
         /* Late periods are made up, so simulated time keeps pace with the wall clock. */
         for (uint64_t e = 0; e < expirations && !t->stop; ++e) {
             control(arg);

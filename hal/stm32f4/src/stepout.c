@@ -67,7 +67,7 @@ hal_stepper board_stepper_hal(uint32_t timer_hz)
     TSE_TIM4->EGR = TIM_EGR_UG; /* loads PSC */
     TSE_TIM4->SR = 0;
     TSE_TIM4->DIER = TIM_DIER_UIE;
-    timing(0, 2000u, 0u);
+    timing(0, 2500u, 0u); /* the DM542's 2.5 us until the controller programs step_pulse_ns */
     tse_nvic_enable(IRQ_TIM4, PRIO_PULSE);
     const hal_stepper h = {0, set_dir, pulse, enable, timing};
     return h;

@@ -10,6 +10,8 @@
 #define tse_workspace TSE_NS(tse_workspace)
 #define tse_workspace_pose TSE_NS(tse_workspace_pose)
 #define tse_workspace_count TSE_NS(tse_workspace_count)
+#define tse_workspace_cell_volume TSE_NS(tse_workspace_cell_volume)
+#define tse_workspace_volume TSE_NS(tse_workspace_volume)
 #define tse_vertical_profile TSE_NS(tse_vertical_profile)
 #define tse_margins TSE_NS(tse_margins)
 
@@ -43,6 +45,23 @@ tse_status tse_workspace_pose(const tse_geometry *g, int n_r, int n_phi, int n_z
  * reach.  Only the count: a screened point's status is not known.  Same arguments and refusals. */
 tse_status tse_workspace_count(const tse_geometry *g, int n_r, int n_phi, int n_z, const tse_real orientation[3],
                                long *reachable, long *total);
+
+/* The volume [m^3] that point (i, j, k) of that grid stands for, the same for every j: its cell of
+ * the cylinder r <= L/2, 0 <= Z <= L, cut halfway between neighbouring points in r and in Z (at the
+ * axis, the rim, the floor and the top the cell ends there) and into n_phi equal sectors,
+ *   (pi / n_phi) (r_hi^2 - r_lo^2) (Z_hi - Z_lo),
+ * so that the cells of all points fill the cylinder, pi L^3 / 4, without gap or overlap.  Its
+ * resolution: dr = L / (2 (n_r - 1)), dZ = L / (n_z - 1), an arc of pi L / n_phi at the rim.
+ * TSE_INVALID (and NaN) for a grid or index tse_workspace_pose refuses. */
+tse_status tse_workspace_cell_volume(const tse_geometry *g, int n_r, int n_phi, int n_z, int i, int k,
+                                     tse_real *volume);
+
+/* tse_workspace_count's count, and the reachable volume of the plate's centre at that orientation
+ * [m^3]: the sum of the cells (tse_workspace_cell_volume) of the reachable points.  The workspace
+ * as a size, so that designs of different L compare (the fraction is the same for a design scaled
+ * as a whole).  Same arguments and refusals as tse_workspace_count; 0 and NaN when refused. */
+tse_status tse_workspace_volume(const tse_geometry *g, int n_r, int n_phi, int n_z, const tse_real orientation[3],
+                                long *reachable, long *total, tse_real *volume);
 
 /* The paper's singular-value figures at one height of the vertical axis, (0, 0, z, 0, 0, 0), of the
  * branch solution (no limit applied, as tse_sigma_z). */

@@ -26,7 +26,9 @@ hal_clock posix_clock_hal(void);
 
 typedef struct {
     volatile int stop;
-    uint64_t overruns; /* periods the process was too late for */
+    uint64_t periods;    /* control periods run */
+    uint64_t overruns;   /* of them, periods the process was too late for (run late, back to back) */
+    uint64_t max_behind; /* the most periods it was ever behind at once */
 } posix_ticker;
 /* start() runs the loop in the calling thread until stop() (or a signal sets ->stop): every
  * control period one control call, then the period's step calls back to back.  The plant's
