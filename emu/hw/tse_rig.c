@@ -4,9 +4,9 @@
  * property; docs/emulator.md describes the protocol).
  *
  * The drivers: a slide moves one step on each STEP pulse while ENABLE is high, towards +s when
- * DIR is high.  Like a real driver (DM542/TB6600 class) it misses a pulse high for less than
- * step-pulse-ns, and takes a step whose rising edge comes less than dir-setup-ns after a change
- * of DIR in the direction DIR had before (property "miss-violations", on by default; off, such
+ * DIR is high.  Like a real driver it misses a pulse high for less than step-pulse-ns (default
+ * 2500: the DM542's minimum, docs/board.md), and takes a step whose rising edge comes less than
+ * dir-setup-ns (5000) after a change of DIR in the direction DIR had before (property "miss-violations", on by default; off, such
  * steps count as the firmware meant them).  Either way each such event is logged with its
  * virtual time, slide and the time measured (`log`).  Positions: initial + steps / steps-per-m.
  *
@@ -382,7 +382,7 @@ static Property rig_properties[] = {
     DEFINE_PROP_UINT32("steps-per-m", TseRigState, steps_per_m, 1280000),
     DEFINE_PROP_STRING("initial-m", TseRigState, initial_m),
     DEFINE_PROP_STRING("switch-m", TseRigState, switch_m),
-    DEFINE_PROP_UINT32("step-pulse-ns", TseRigState, step_pulse_ns, 2000),
+    DEFINE_PROP_UINT32("step-pulse-ns", TseRigState, step_pulse_ns, 2500),
     DEFINE_PROP_UINT32("dir-setup-ns", TseRigState, dir_setup_ns, 5000),
     DEFINE_PROP_BOOL("miss-violations", TseRigState, miss_violations, true),
     DEFINE_PROP_END_OF_LIST(),
