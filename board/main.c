@@ -10,6 +10,7 @@
 #include "fw/controller.h"
 #include "fw/limits.h"
 #include "hal_stm32f4/board_io.h"
+#include "hal_stm32f4/bootline.h"
 #include "hal_stm32f4/bxcan.h"
 #include "hal_stm32f4/clock.h"
 #include "hal_stm32f4/fault.h"
@@ -105,6 +106,33 @@ static void control(void *arg)
     PIN_LED_PORT->BSRR = on ? 1u << PIN_LED : 1u << (PIN_LED + 16u);
 }
 
+/* One line on USART1 (PA9) saying what the start-up found (bootline.h). */
+static void boot_line(const board_state *b)
+{
+    board_bootline_open(b->clocks.apb2_hz);
+    board_bootline_puts("tse-fw node ");
+    board_bootline_dec(TSE_BOARD_NODE);
+    board_bootline_puts(": boot faults ");
+    board_bootline_hex(b->boot_faults);
+    if (b->boot_faults & BOOT_FAULT_CLOCK) {
+        board_bootline_puts("; clock: no ");
+        board_bootline_puts(b->clocks.failed);
+    }
+    if (b->boot_faults & BOOT_FAULT_CAN) {
+        board_bootline_puts("; CAN: ");
+        board_bootline_puts(bxcan_status_str((bxcan_status)b->can_status));
+    }
+    if (b->boot_faults & BOOT_FAULT_WATCHDOG)
+        board_bootline_puts("; reset by the watchdog");
+    if (b->boot_faults & BOOT_FAULT_PREVIOUS)
+        board_bootline_puts("; the last run ended in a fault");
+    if (b->boot_faults & BOOT_FAULT_IWDG)
+        board_bootline_puts("; watchdog not started");
+    if (b->boot_faults & BOOT_FAULT_STORAGE)
+        board_bootline_puts("; parameter storage");
+    board_bootline_puts("\r\n");
+}
+
 int main(void)
 {
     board_state *b = &tse_board;
@@ -157,6 +185,7 @@ int main(void)
     if (b->boot_faults)
         fw_report_fault(&b->fw, FW_FAULT_HARDWARE);
     board_estop_irq_init(on_estop, &b->fw);
+    boot_line(b);
 
     b->ticker.timer_hz = b->clocks.apb1_timer_hz;
     b->ticker.idle = board_iwdg_feed;

@@ -21,6 +21,8 @@ packages=(
   cppcheck clang-tidy               # scripts/static.sh
   valgrind                          # scripts/kin_icount.sh (instruction counts on the host)
   libgsl-dev                        # bench/gsl_peer.c, the GSL Newton peer of the benchmark
+  dpkg-dev patch xz-utils meson ninja-build pkg-config libglib2.0-dev libpixman-1-dev libfdt-dev
+                                    # emu/build.sh: the TSE emulator (QEMU from Debian's source)
 )
 
 missing=()

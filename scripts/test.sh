@@ -4,7 +4,8 @@
 # fuzz targets for a bounded time each (TSE_FUZZ_SECONDS, default 60; scripts/fuzz_long.sh runs
 # them for hours), the static analysis (scripts/static.sh), and the board build (whose float
 # kinematics must not pull in software double arithmetic, whose image must fit its flash and RAM
-# budgets) with its on-target tests on QEMU's netduinoplus2.
+# budgets) with its on-target tests on QEMU's netduinoplus2 and its tests on the project's
+# emulator (emu/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -40,3 +41,10 @@ echo "=== stm32f4: cross build, on-target tests"
 cmake --preset stm32f4 >/dev/null
 cmake --build --preset stm32f4 -j "$jobs"
 ctest --preset stm32f4 -L target -j "$jobs"
+
+# The production image on the TSE emulator (docs/emulator.md).  The emulator is built once and
+# cached outside the clone (the first build takes a quarter of an hour); where QEMU's source
+# cannot be fetched the board-emu tests skip, saying so.
+echo "=== stm32f4: the image on the emulator"
+emu/build.sh || echo "emulator not built: the board-emu tests skip"
+ctest --preset stm32f4 -L board-emu

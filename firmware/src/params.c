@@ -1,5 +1,6 @@
 #include "fw/params.h"
 
+#include "fw/doc.h"
 #include "fw/types.h"
 
 /* Prototype defaults (paper, section VI; kinematics.md).  The slides: a 200-step motor at 1/64
@@ -12,68 +13,68 @@
     "fault; a change needs homing again"
 
 const fw_param_def fw_param_table[FP_COUNT] = {
-    [FP_L] = {"L", "um", 100000, 10000000, 1727000, "total scissor length"},
-    [FP_K1] = {"k1", "ppm", 1, 1000000, 264700, "l0 / L"},
-    [FP_ETA] = {"eta", "urad", -1570796, 1570796, 523599, "slide angle from the local x axis"},
-    [FP_K3] = {"k3", "ppm", 0, 1000000, 18600, "r_act / L"},
-    [FP_K4] = {"k4", "ppm", 1, 1000000, 117650, "r_top / L"},
-    [FP_ALPHA_MIN] = {"alpha_min", "urad", 1, 1570796, 188727, "scissor angle stop, low"},
-    [FP_ALPHA_MAX] = {"alpha_max", "urad", 1, 1570796, 1215271, "scissor angle stop, high"},
-    [FP_S_MIN] = {"s_min", "um", 0, 5000000, 0, "slide stroke, low end"},
-    [FP_S_MAX] = {"s_max", "um", 1, 5000000, 900000, "slide stroke, high end"},
-    [FP_MU_MIN] = {"mu_min", "ppm", 0, 999999, 50000, "type-1 singularity margin"},
-    [FP_NU_MIN] = {"nu_min", "ppm", 0, 999999, 1000, "type-2 singularity margin"},
-    [FP_STEPS_PER_M] = {"steps_per_m", "1/m", 1000, 10000000, 1280000, "slide steps per metre (a change needs homing again)"},
-    [FP_SLIDE_VMAX] = {"slide_vmax", "um/s", 1000, 2000000, 150000, "slide speed limit"},
-    [FP_SLIDE_AMAX] = {"slide_amax", "um/s^2", 1000, 20000000, 1000000, "slide acceleration limit"},
-    [FP_PLATE_VMAX] = {"plate_vmax", "um/s", 1000, 5000000, 300000, "plate speed limit"},
-    [FP_PLATE_AMAX] = {"plate_amax", "um/s^2", 1000, 50000000, 1000000, "plate acceleration limit"},
-    [FP_PLATE_JMAX] = {"plate_jmax", "um/s^3", 1000, 500000000, 10000000, "plate jerk limit"},
-    [FP_PLATE_WMAX] = {"plate_wmax", "urad/s", 1000, 10000000, 500000, "plate angular speed limit"},
+    [FP_L] = {"L", "um", 100000, 10000000, 1727000, FW_DOC("total scissor length")},
+    [FP_K1] = {"k1", "ppm", 1, 1000000, 264700, FW_DOC("l0 / L")},
+    [FP_ETA] = {"eta", "urad", -1570796, 1570796, 523599, FW_DOC("slide angle from the local x axis")},
+    [FP_K3] = {"k3", "ppm", 0, 1000000, 18600, FW_DOC("r_act / L")},
+    [FP_K4] = {"k4", "ppm", 1, 1000000, 117650, FW_DOC("r_top / L")},
+    [FP_ALPHA_MIN] = {"alpha_min", "urad", 1, 1570796, 188727, FW_DOC("scissor angle stop, low")},
+    [FP_ALPHA_MAX] = {"alpha_max", "urad", 1, 1570796, 1215271, FW_DOC("scissor angle stop, high")},
+    [FP_S_MIN] = {"s_min", "um", 0, 5000000, 0, FW_DOC("slide stroke, low end")},
+    [FP_S_MAX] = {"s_max", "um", 1, 5000000, 900000, FW_DOC("slide stroke, high end")},
+    [FP_MU_MIN] = {"mu_min", "ppm", 0, 999999, 50000, FW_DOC("type-1 singularity margin")},
+    [FP_NU_MIN] = {"nu_min", "ppm", 0, 999999, 1000, FW_DOC("type-2 singularity margin")},
+    [FP_STEPS_PER_M] = {"steps_per_m", "1/m", 1000, 10000000, 1280000, FW_DOC("slide steps per metre (a change needs homing again)")},
+    [FP_SLIDE_VMAX] = {"slide_vmax", "um/s", 1000, 2000000, 150000, FW_DOC("slide speed limit")},
+    [FP_SLIDE_AMAX] = {"slide_amax", "um/s^2", 1000, 20000000, 1000000, FW_DOC("slide acceleration limit")},
+    [FP_PLATE_VMAX] = {"plate_vmax", "um/s", 1000, 5000000, 300000, FW_DOC("plate speed limit")},
+    [FP_PLATE_AMAX] = {"plate_amax", "um/s^2", 1000, 50000000, 1000000, FW_DOC("plate acceleration limit")},
+    [FP_PLATE_JMAX] = {"plate_jmax", "um/s^3", 1000, 500000000, 10000000, FW_DOC("plate jerk limit")},
+    [FP_PLATE_WMAX] = {"plate_wmax", "urad/s", 1000, 10000000, 500000, FW_DOC("plate angular speed limit")},
     [FP_PLATE_DWMAX] = {"plate_dwmax", "urad/s^2", 1000, 100000000, 2000000,
-                        "plate angular acceleration limit"},
-    [FP_STEP_RATE_MAX] = {"step_rate_max", "1/s", 1000, 500000, 200000, "step rate limit per slide"},
-    [FP_WATCHDOG_MS] = {"watchdog_ms", "ms", 0, 60000, 500, "host heartbeat timeout (0: off)"},
-    [FP_STATUS_MS] = {"status_ms", "ms", 10, 10000, 100, "STATUS period"},
-    [FP_TELEMETRY_MS] = {"telemetry_ms", "ms", 0, 10000, 50, "SLIDES and FK period (0: off)"},
+                        FW_DOC("plate angular acceleration limit")},
+    [FP_STEP_RATE_MAX] = {"step_rate_max", "1/s", 1000, 500000, 200000, FW_DOC("step rate limit per slide")},
+    [FP_WATCHDOG_MS] = {"watchdog_ms", "ms", 0, 60000, 500, FW_DOC("host heartbeat timeout (0: off)")},
+    [FP_STATUS_MS] = {"status_ms", "ms", 10, 10000, 100, FW_DOC("STATUS period")},
+    [FP_TELEMETRY_MS] = {"telemetry_ms", "ms", 0, 10000, 50, FW_DOC("SLIDES and FK period (0: off)")},
     [FP_HOMING_SPEED] = {"homing_speed", "um/s", 100, 500000, 20000,
-                         "homing speed (held to the slide speed limit)"},
+                         FW_DOC("homing speed (held to the slide speed limit)")},
     [FP_HOMING_BACKOFF] = {"homing_backoff", "um", 0, 100000, 2000,
-                           "how far a slide that starts on its switch goes on past the release "
-                           "before seeking the switch"},
+                           FW_DOC("how far a slide that starts on its switch goes on past the release "
+                           "before seeking the switch")},
     /* The homing switches: the alpha stop keeps the symmetric pose above s = 0.184 m, so six
      * slides seeking down together never reach s = 0; 0.2 m is above that.  The slides still go
      * below the switches in asymmetric poses: a reference, not an end of travel. */
-    [FP_HOME_SW_1] = {"home_sw_1", "um", 0, 5000000, 200000, HOME_SW_DOC(1)},
-    [FP_HOME_SW_2] = {"home_sw_2", "um", 0, 5000000, 200000, HOME_SW_DOC(2)},
-    [FP_HOME_SW_3] = {"home_sw_3", "um", 0, 5000000, 200000, HOME_SW_DOC(3)},
-    [FP_HOME_SW_4] = {"home_sw_4", "um", 0, 5000000, 200000, HOME_SW_DOC(4)},
-    [FP_HOME_SW_5] = {"home_sw_5", "um", 0, 5000000, 200000, HOME_SW_DOC(5)},
-    [FP_HOME_SW_6] = {"home_sw_6", "um", 0, 5000000, 200000, HOME_SW_DOC(6)},
+    [FP_HOME_SW_1] = {"home_sw_1", "um", 0, 5000000, 200000, FW_DOC(HOME_SW_DOC(1))},
+    [FP_HOME_SW_2] = {"home_sw_2", "um", 0, 5000000, 200000, FW_DOC(HOME_SW_DOC(2))},
+    [FP_HOME_SW_3] = {"home_sw_3", "um", 0, 5000000, 200000, FW_DOC(HOME_SW_DOC(3))},
+    [FP_HOME_SW_4] = {"home_sw_4", "um", 0, 5000000, 200000, FW_DOC(HOME_SW_DOC(4))},
+    [FP_HOME_SW_5] = {"home_sw_5", "um", 0, 5000000, 200000, FW_DOC(HOME_SW_DOC(5))},
+    [FP_HOME_SW_6] = {"home_sw_6", "um", 0, 5000000, 200000, FW_DOC(HOME_SW_DOC(6))},
     /* The Leadshine DM542 (User's Manual V1.0, section 10, Figure 11) asks for a pulse and a low
      * time of at least 2.5 us each and DIR 5 us ahead of the pulse's edge (docs/board.md).  2.5 us
      * is also the longest pulse the board's 200 kHz step interrupts allow at step_rate_max's
      * default 200 kHz (high and low alike in the 5 us between two steps of a slide). */
     [FP_STEP_PULSE_NS] = {"step_pulse_ns", "ns", 100, 1000000, 2500,
-                          "STEP high time; refused unless the pulse ends within its step interrupt "
+                          FW_DOC("STEP high time; refused unless the pulse ends within its step interrupt "
                           "period and leaves a low time at least as long before the same slide's "
-                          "next step"},
+                          "next step")},
     [FP_DIR_SETUP_NS] = {"dir_setup_ns", "ns", 0, 1000000, 5000,
-                         "DIR stable before a STEP edge (rounded up to whole step interrupts, at "
-                         "least one)"},
+                         FW_DOC("DIR stable before a STEP edge (rounded up to whole step interrupts, at "
+                         "least one)")},
     [FP_CAN_KBPS] = {"can_kbps", "kbit/s", 125, 1000, 500,
-                     "CAN bit rate: 125, 250, 500 or 1000; the board applies it at start-up, so "
-                     "it takes effect after PARAM_SAVE and a restart"},
+                     FW_DOC("CAN bit rate: 125, 250, 500 or 1000; the board applies it at start-up, so "
+                     "it takes effect after PARAM_SAVE and a restart")},
     /* The lead is what the host may fall behind by at the start, before the queue has filled: a
      * row takes about 1 ms on a 500 kbit/s bus, but a host on a general-purpose OS stalls for tens
      * of milliseconds (scheduling, Python's garbage collector, a loaded machine).  0.2 s covers a
      * 100 ms stall twice over at the cost of a 0.2 s wait at rest; with rows 20 ms apart it is ten
      * of the queue's 32 rows, and a queue that fills before it starts the clock anyway. */
     [FP_TRAJ_LEAD] = {"traj_lead", "us", 0, 10000000, 200000,
-                      "streamed trajectories: the path the controller holds before the clock of the "
+                      FW_DOC("streamed trajectories: the path the controller holds before the clock of the "
                       "first row starts (or the last row, or a full queue); the plate waits at rest "
                       "until then. 0.2 s covers host stalls (scheduling, garbage collection) of tens "
-                      "of ms several times over; a row takes about 1 ms on the bus"},
+                      "of ms several times over; a row takes about 1 ms on the bus")},
 };
 
 void fw_params_default(fw_param_set *s)

@@ -1,6 +1,7 @@
 /* The protocol, declared once.  See fw/proto_table.h. */
 #include "fw/proto_table.h"
 
+#include "fw/doc.h"
 #include "fw/types.h"
 #include "tse/status.h"
 
@@ -101,171 +102,171 @@ const proto_enum_def proto_enums[] = {
 };
 
 /* Field shorthands: name, type, byte offset, raw range, unit, scale, value names, doc. */
-#define SEQ(off) {"seq", PF_U8, off, 0, 255, "", 1.0, 0, "sequence number, echoed in ACK/REJECT"}
-#define POS24(nm, off, doc) {nm, PF_I24, off, -4000000, 4000000, "m", 1e-6, 0, doc}
-#define ANG24(nm, off, doc) {nm, PF_I24, off, -3141593, 3141593, "rad", 1e-6, 0, doc}
-#define FULL_I32(nm, off, unit, scale, doc) {nm, PF_I32, off, INT32_MIN, INT32_MAX, unit, scale, 0, doc}
+#define SEQ(off) {"seq", PF_U8, off, 0, 255, "", 1.0, 0, FW_DOC("sequence number, echoed in ACK/REJECT")}
+#define POS24(nm, off, doc) {nm, PF_I24, off, -4000000, 4000000, "m", 1e-6, 0, FW_DOC(doc)}
+#define ANG24(nm, off, doc) {nm, PF_I24, off, -3141593, 3141593, "rad", 1e-6, 0, FW_DOC(doc)}
+#define FULL_I32(nm, off, unit, scale, doc) {nm, PF_I32, off, INT32_MIN, INT32_MAX, unit, scale, 0, FW_DOC(doc)}
 
 const proto_def proto_table[PM_COUNT] = {
     {PM_ESTOP, 0x01, "ESTOP", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
-     "Emergency stop: stepping is cut at once and the controller latches an e-stop fault. Node 0 "
-     "stops every controller on the bus."},
+     FW_DOC("Emergency stop: stepping is cut at once and the controller latches an e-stop fault. Node 0 "
+     "stops every controller on the bus.")},
     {PM_STOP, 0x02, "STOP", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
-     "Controlled stop: the running motion decelerates along its path within the limits and the "
+     FW_DOC("Controlled stop: the running motion decelerates along its path within the limits and the "
      "trajectory queue is dropped: once at rest the queue is empty, and no further point of the "
-     "stopped trajectory is accepted. Node 0 stops every controller."},
+     "stopped trajectory is accepted. Node 0 stops every controller.")},
     {PM_REJECT, 0x03, "REJECT", PROTO_TO_HOST, 8, 7,
-     {{"function", PF_U8, 0, 0, 127, "", 1.0, 0, "function code of the refused message"},
-      {"seq", PF_U8, 1, 0, 255, "", 1.0, 0, "its sequence number (0 when it had none)"},
-      {"reason", PF_U8, 2, 0, FW_REASON_COUNT - 1, "", 1.0, proto_reason_names, "why"},
+     {{"function", PF_U8, 0, 0, 127, "", 1.0, 0, FW_DOC("function code of the refused message")},
+      {"seq", PF_U8, 1, 0, 255, "", 1.0, 0, FW_DOC("its sequence number (0 when it had none)")},
+      {"reason", PF_U8, 2, 0, FW_REASON_COUNT - 1, "", 1.0, proto_reason_names, FW_DOC("why")},
       {"scissor", PF_U8, 3, 0, 3, "", 1.0, 0,
-       "for kinematics, the first failing scissor (1..3); for timing, the scissor (1..3) of the slide "
-       "over its limit; 0 otherwise"},
+       FW_DOC("for kinematics, the first failing scissor (1..3); for timing, the scissor (1..3) of the slide "
+       "over its limit; 0 otherwise")},
       {"kin_status", PF_U8, 4, 0, TSE_STATUS_COUNT - 1, "", 1.0, proto_kin_status_names,
-       "for kinematics, the kinematic status of the first failing point; 0 otherwise"},
+       FW_DOC("for kinematics, the kinematic status of the first failing point; 0 otherwise")},
       {"field", PF_U8, 5, 0, 255, "", 1.0, 0,
-       "for range, the index of the offending field (0 = its first, counting in byte order); for "
+       FW_DOC("for range, the index of the offending field (0 = its first, counting in byte order); for "
        "param_unknown, param_range and param_set, the parameter id (255 for an id above 255); for "
        "state, the controller's state when it refused (a state value as in STATUS); for timing, the "
        "slide over its limit, 1..6 for A1, B1, A2, B2, A3, B3, plus 16 times the limit it is against "
        "(slide limit codes: 0 slide_vmax, 1 slide_amax, the acceleration, 2 the step generator's speed "
-       "limit, when lower than slide_vmax)"},
+       "limit, when lower than slide_vmax)")},
       {"where", PF_U16, 6, 0, 65535, "per mille", 1.0, 0,
-       "for kinematics, the position of the first failing point along the path (0..1000); for "
+       FW_DOC("for kinematics, the position of the first failing point along the path (0..1000); for "
        "timing, the demand against the limit field names, per mille of that limit as in effect "
        "(1000 = at the limit, 1350 = 35 % over; capped at 65535); for param_set, the rule the set "
-       "breaks (param_set rule codes; 0 from a controller that does not say)"}},
-     "Every refused command gets one. Nothing of a refused command is applied. For order, field is the "
+       "breaks (param_set rule codes; 0 from a controller that does not say)")}},
+     FW_DOC("Every refused command gets one. Nothing of a refused command is applied. For order, field is the "
      "sequence number the running trajectory expects next. For ended, field is how the row's trajectory "
      "ended (a traj_end value: 0 none, no such trajectory ran; 1 done; 2 stop; 3 fault) plus 16 times "
      "the fault that ended it (as in STATUS), and where is how long before this row came it ended, in "
-     "ms (capped at 65535): for an underrun, how late the host was with the row the controller lacked."},
+     "ms (capped at 65535): for an underrun, how late the host was with the row the controller lacked.")},
     {PM_ACK, 0x04, "ACK", PROTO_TO_HOST, 8, 5,
-     {{"function", PF_U8, 0, 0, 127, "", 1.0, 0, "function code of the accepted message"},
-      {"seq", PF_U8, 1, 0, 255, "", 1.0, 0, "its sequence number"},
-      {"queue_depth", PF_U8, 2, 0, 255, "", 1.0, 0, "trajectory points waiting"},
-      {"queue_free", PF_U8, 3, 0, 255, "", 1.0, 0, "trajectory points that may still be sent"},
+     {{"function", PF_U8, 0, 0, 127, "", 1.0, 0, FW_DOC("function code of the accepted message")},
+      {"seq", PF_U8, 1, 0, 255, "", 1.0, 0, FW_DOC("its sequence number")},
+      {"queue_depth", PF_U8, 2, 0, 255, "", 1.0, 0, FW_DOC("trajectory points waiting")},
+      {"queue_free", PF_U8, 3, 0, 255, "", 1.0, 0, FW_DOC("trajectory points that may still be sent")},
       {"detail", PF_U32, 4, 0, INT32_MAX, "s", 1e-3, 0,
-       "for a move: its planned duration (after any stretching to the slide limits)"}},
-     "Every accepted command gets one; it is also the flow control of trajectory streaming."},
+       FW_DOC("for a move: its planned duration (after any stretching to the slide limits)")}},
+     FW_DOC("Every accepted command gets one; it is also the flow control of trajectory streaming.")},
     {PM_HOST_HEARTBEAT, 0x05, "HOST_HEARTBEAT", PROTO_TO_CONTROLLER, 1, 1,
-     {{"counter", PF_U8, 0, 0, 255, "", 1.0, 0, "free-running"}},
-     "The host is alive. Silence past the watchdog timeout stops the robot and latches a fault "
-     "(only while enabled)."},
-    {PM_ENABLE, 0x06, "ENABLE", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)}, "Energise the drives."},
+     {{"counter", PF_U8, 0, 0, 255, "", 1.0, 0, FW_DOC("free-running")}},
+     FW_DOC("The host is alive. Silence past the watchdog timeout stops the robot and latches a fault "
+     "(only while enabled).")},
+    {PM_ENABLE, 0x06, "ENABLE", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)}, FW_DOC("Energise the drives.")},
     {PM_DISABLE, 0x07, "DISABLE", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
-     "De-energise the drives (only at rest). The slides keep their zero."},
+     FW_DOC("De-energise the drives (only at rest). The slides keep their zero.")},
     {PM_HOME, 0x08, "HOME", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
-     "Find each slide's homing switch (pressed at and below home_sw_k, released above: a reference "
+     FW_DOC("Find each slide's homing switch (pressed at and below home_sw_k, released above: a reference "
      "the slides pass in legitimate poses, not an end of travel): a slide that starts on it first "
      "moves up off it by homing_backoff; each seeks down at homing_speed to the press, brakes, and "
      "creeps up to the release edge, where its coordinate is set. Then all six go to the home pose. "
      "Once homed, a switch that disagrees with the step count by more than 0.5 mm latches a limit "
-     "fault."},
+     "fault.")},
     {PM_CLEAR_FAULT, 0x09, "CLEAR_FAULT", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
-     "Leave the fault or e-stop state (the e-stop input must be closed). The drives stay off."},
+     FW_DOC("Leave the fault or e-stop state (the e-stop input must be closed). The drives stay off.")},
     {PM_POSE_A, 0x0A, "POSE_A", PROTO_TO_CONTROLLER, 7, 3,
      {SEQ(0), POS24("x", 1, "plate centre X"), POS24("y", 4, "plate centre Y")},
-     "Pose part 1 of 3, staged under its sequence number."},
+     FW_DOC("Pose part 1 of 3, staged under its sequence number.")},
     {PM_POSE_B, 0x0B, "POSE_B", PROTO_TO_CONTROLLER, 7, 3,
      {SEQ(0), POS24("z", 1, "plate centre Z"), ANG24("roll", 4, "roll (about X, applied first)")},
-     "Pose part 2 of 3."},
+     FW_DOC("Pose part 2 of 3.")},
     {PM_POSE_C, 0x0C, "POSE_C", PROTO_TO_CONTROLLER, 7, 3,
      {SEQ(0), ANG24("pitch", 1, "pitch (about Y)"), ANG24("yaw", 4, "yaw (about Z, applied last)")},
-     "Pose part 3 of 3."},
+     FW_DOC("Pose part 3 of 3.")},
     {PM_MOVE_COMMIT, 0x0D, "MOVE_COMMIT", PROTO_TO_CONTROLLER, 6, 3,
      {SEQ(0),
-      {"kind", PF_U8, 1, 0, 1, "", 1.0, proto_move_kind_names, "what value gives"},
+      {"kind", PF_U8, 1, 0, 1, "", 1.0, proto_move_kind_names, FW_DOC("what value gives")},
       {"value", PF_U32, 2, 1, 3600000, "ms or um/s", 1.0, 0,
-       "for kind duration, the move's duration in ms; for kind speed, the plate's speed in um/s"}},
-     "Move to the staged pose of this sequence number, straight in position with the orientation "
+       FW_DOC("for kind duration, the move's duration in ms; for kind speed, the plate's speed in um/s")}},
+     FW_DOC("Move to the staged pose of this sequence number, straight in position with the orientation "
      "interpolated. Applied only if all three parts of this sequence arrived and it is newer than "
-     "the last accepted; the whole path is validated before the first step."},
+     "the last accepted; the whole path is validated before the first step.")},
     {PM_TRAJ_COMMIT, 0x0E, "TRAJ_COMMIT", PROTO_TO_CONTROLLER, 7, 4,
      {SEQ(0),
       {"dt", PF_U32, 1, 1000, 60000000, "s", 1e-6, 0,
-       "time from the previous row (the first row: from the trajectory's start)"},
+       FW_DOC("time from the previous row (the first row: from the trajectory's start)")},
       {"flags", PF_U8, 5, 0, 3, "", 1.0, 0,
-       "bit 0: the trajectory's last row; bit 1: its first row, which starts it"},
+       FW_DOC("bit 0: the trajectory's last row; bit 1: its first row, which starts it")},
       {"traj", PF_U8, 6, 0, 255, "", 1.0, 0,
-       "the trajectory's identity: its first row's sequence number (the first row carries its own)"}},
-     "Queue the staged pose of this sequence number as a row of a timed trajectory. A trajectory starts "
+       FW_DOC("the trajectory's identity: its first row's sequence number (the first row carries its own)")}},
+     FW_DOC("Queue the staged pose of this sequence number as a row of a timed trajectory. A trajectory starts "
      "with a row flagged first, taken only while idle; every later row carries its identity and the "
      "sequence number after its previous row's (else order, nothing taken: a host with several rows in "
      "flight sends again from the first refused one). Its clock starts, with the plate at rest until "
      "then, once the controller holds traj_lead of it, its last row, or a full queue; a row of a "
      "trajectory that has ended is refused ended, whatever the state, and never starts another. See "
-     "Streaming a trajectory, above."},
+     "Streaming a trajectory, above.")},
     {PM_PARAM_GET, 0x0F, "PARAM_GET", PROTO_TO_CONTROLLER, 2, 1,
-     {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, "parameter id"}}, "Read a parameter."},
+     {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, FW_DOC("parameter id")}}, FW_DOC("Read a parameter.")},
     {PM_PARAM_SET, 0x10, "PARAM_SET", PROTO_TO_CONTROLLER, 6, 2,
-     {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, "parameter id"},
+     {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, FW_DOC("parameter id")},
       FULL_I32("value", 2, "", 1.0, "new value, in the parameter's integer unit")},
-     "Set a parameter (only while disabled or in fault); range-checked, then checked with the "
+     FW_DOC("Set a parameter (only while disabled or in fault); range-checked, then checked with the "
      "whole set; a refused value changes nothing. A change of what a step means or of the "
      "geometry (steps_per_m, home_sw_1..6, L, k1, eta, k3, k4, alpha_min, alpha_max, s_min, "
-     "s_max) clears homed: home again before moving; the margins and limits keep it."},
+     "s_max) clears homed: home again before moving; the margins and limits keep it.")},
     {PM_PARAM_SAVE, 0x11, "PARAM_SAVE", PROTO_TO_CONTROLLER, 4, 1,
      {{"magic", PF_U32, 0, 0x45564153, 0x45564153, "", 1.0, 0,
-       "0x45564153, the ASCII bytes S, A, V, E in wire order"}},
-     "Store the parameter set in non-volatile memory."},
+       FW_DOC("0x45564153, the ASCII bytes S, A, V, E in wire order")}},
+     FW_DOC("Store the parameter set in non-volatile memory.")},
     {PM_STATUS, 0x20, "STATUS", PROTO_TO_HOST, 8, 7,
-     {{"state", PF_U8, 0, 0, FW_STATE_COUNT - 1, "", 1.0, proto_state_names, "controller state"},
-      {"fault", PF_U8, 1, 0, FW_FAULT_COUNT - 1, "", 1.0, proto_fault_names, "latched fault"},
+     {{"state", PF_U8, 0, 0, FW_STATE_COUNT - 1, "", 1.0, proto_state_names, FW_DOC("controller state")},
+      {"fault", PF_U8, 1, 0, FW_FAULT_COUNT - 1, "", 1.0, proto_fault_names, FW_DOC("latched fault")},
       {"flags", PF_U8, 2, 0, 255, "", 1.0, 0,
-       "bit 0 homed, 1 drives enabled, 2 e-stop input open, 3 a high-end switch pressed or (once "
-       "homed) a homing switch disagreeing with the step count, 4 CAN error passive"},
-      {"queue_depth", PF_U8, 3, 0, 255, "", 1.0, 0, "trajectory points waiting"},
-      {"queue_free", PF_U8, 4, 0, 255, "", 1.0, 0, "trajectory points that may still be sent"},
-      {"last_seq", PF_U8, 5, 0, 255, "", 1.0, 0, "last accepted sequence number"},
-      {"counter", PF_U16, 6, 0, 65535, "", 1.0, 0, "free-running"}},
-     "Heartbeat of the controller, every status period."},
+       FW_DOC("bit 0 homed, 1 drives enabled, 2 e-stop input open, 3 a high-end switch pressed or (once "
+       "homed) a homing switch disagreeing with the step count, 4 CAN error passive")},
+      {"queue_depth", PF_U8, 3, 0, 255, "", 1.0, 0, FW_DOC("trajectory points waiting")},
+      {"queue_free", PF_U8, 4, 0, 255, "", 1.0, 0, FW_DOC("trajectory points that may still be sent")},
+      {"last_seq", PF_U8, 5, 0, 255, "", 1.0, 0, FW_DOC("last accepted sequence number")},
+      {"counter", PF_U16, 6, 0, 65535, "", 1.0, 0, FW_DOC("free-running")}},
+     FW_DOC("Heartbeat of the controller, every status period.")},
     {PM_SLIDES_A, 0x21, "SLIDES_A", PROTO_TO_HOST, 8, 2,
      {FULL_I32("s_a1", 0, "m", 1e-9, "slide A1"), FULL_I32("s_b1", 4, "m", 1e-9, "slide B1")},
-     "Commanded slide positions (the steps emitted), every telemetry period. A slide beyond "
-     "2.147483647 m (the stroke may reach 5 m) is sent as the field's end."},
+     FW_DOC("Commanded slide positions (the steps emitted), every telemetry period. A slide beyond "
+     "2.147483647 m (the stroke may reach 5 m) is sent as the field's end.")},
     {PM_SLIDES_B, 0x22, "SLIDES_B", PROTO_TO_HOST, 8, 2,
      {FULL_I32("s_a2", 0, "m", 1e-9, "slide A2"), FULL_I32("s_b2", 4, "m", 1e-9, "slide B2")},
-     "Slides of scissor 2."},
+     FW_DOC("Slides of scissor 2.")},
     {PM_SLIDES_C, 0x23, "SLIDES_C", PROTO_TO_HOST, 8, 2,
      {FULL_I32("s_a3", 0, "m", 1e-9, "slide A3"), FULL_I32("s_b3", 4, "m", 1e-9, "slide B3")},
-     "Slides of scissor 3."},
+     FW_DOC("Slides of scissor 3.")},
     {PM_FK_A, 0x24, "FK_A", PROTO_TO_HOST, 8, 2,
      {FULL_I32("x", 0, "m", 1e-6, "plate X"), FULL_I32("y", 4, "m", 1e-6, "plate Y")},
-     "Plate pose from the forward kinematics of the slide positions, every telemetry period."},
+     FW_DOC("Plate pose from the forward kinematics of the slide positions, every telemetry period.")},
     {PM_FK_B, 0x25, "FK_B", PROTO_TO_HOST, 8, 2,
      {FULL_I32("z", 0, "m", 1e-6, "plate Z"), FULL_I32("roll", 4, "rad", 1e-6, "roll")},
-     "Pose part 2."},
+     FW_DOC("Pose part 2.")},
     {PM_FK_C, 0x26, "FK_C", PROTO_TO_HOST, 8, 2,
      {FULL_I32("pitch", 0, "rad", 1e-6, "pitch"), FULL_I32("yaw", 4, "rad", 1e-6, "yaw")},
-     "Pose part 3."},
+     FW_DOC("Pose part 3.")},
     {PM_PARAM_VALUE, 0x27, "PARAM_VALUE", PROTO_TO_HOST, 6, 2,
-     {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, "parameter id"},
+     {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, FW_DOC("parameter id")},
       FULL_I32("value", 2, "", 1.0, "value in the parameter's integer unit")},
-     "Answer to PARAM_GET and PARAM_SET."},
+     FW_DOC("Answer to PARAM_GET and PARAM_SET.")},
     {PM_MOVE_INFO, 0x2A, "MOVE_INFO", PROTO_TO_HOST, 6, 5,
-     {{"seq", PF_U8, 0, 0, 255, "", 1.0, 0, "the accepted MOVE_COMMIT's sequence number"},
+     {{"seq", PF_U8, 0, 0, 255, "", 1.0, 0, FW_DOC("the accepted MOVE_COMMIT's sequence number")},
       {"start", PF_U8, 1, 0, FW_START_COUNT - 1, "", 1.0, proto_move_start_names,
-       "how it starts: from rest, blended into the running move's deceleration, or after it (back to "
-       "back, where a blend would break a limit)"},
+       FW_DOC("how it starts: from rest, blended into the running move's deceleration, or after it (back to "
+       "back, where a blend would break a limit)")},
       {"bound", PF_U8, 2, 0, FW_BOUND_COUNT - 1, "", 1.0, proto_move_bound_names,
-       "what set its pace: the duration or speed asked, a plate limit, or a slide limit that stretched "
-       "it (slide_vmax also where the step rate is the lower limit)"},
+       FW_DOC("what set its pace: the duration or speed asked, a plate limit, or a slide limit that stretched "
+       "it (slide_vmax also where the step rate is the lower limit)")},
       {"slide", PF_U8, 3, 0, 6, "", 1.0, 0,
-       "for slide_vmax and slide_amax, the slide 1..6 (A1, B1, A2, B2, A3, B3); 0 otherwise"},
+       FW_DOC("for slide_vmax and slide_amax, the slide 1..6 (A1, B1, A2, B2, A3, B3); 0 otherwise")},
       {"demand", PF_U16, 4, 0, 65535, "per mille", 1.0, 0,
-       "for slide_vmax and slide_amax, what that slide would have needed without the stretch (at the "
+       FW_DOC("for slide_vmax and slide_amax, what that slide would have needed without the stretch (at the "
        "pace asked, or the plate limits' where slower), per mille of its limit (1140 = 14 % over; "
-       "capped at 65535); 0 otherwise"}},
-     "Sent right after the ACK of an accepted MOVE_COMMIT (whose detail is the planned duration): "
-     "how the move starts and what set its pace."},
+       "capped at 65535); 0 otherwise")}},
+     FW_DOC("Sent right after the ACK of an accepted MOVE_COMMIT (whose detail is the planned duration): "
+     "how the move starts and what set its pace.")},
     {PM_TRAJ_END, 0x28, "TRAJ_END", PROTO_TO_HOST, 6, 4,
-     {{"traj", PF_U8, 0, 0, 255, "", 1.0, 0, "the trajectory's identity (its first row's sequence number)"},
-      {"ended", PF_U8, 1, 1, FW_TRAJ_END_COUNT - 1, "", 1.0, proto_traj_end_names, "how it ended"},
+     {{"traj", PF_U8, 0, 0, 255, "", 1.0, 0, FW_DOC("the trajectory's identity (its first row's sequence number)")},
+      {"ended", PF_U8, 1, 1, FW_TRAJ_END_COUNT - 1, "", 1.0, proto_traj_end_names, FW_DOC("how it ended")},
       {"fault", PF_U8, 2, 0, FW_FAULT_COUNT - 1, "", 1.0, proto_fault_names,
-       "for fault, the fault that ended it (underrun: the host fell behind; estop; ...); none otherwise"},
+       FW_DOC("for fault, the fault that ended it (underrun: the host fell behind; estop; ...); none otherwise")},
       {"rows", PF_U24, 3, 0, 16777215, "", 1.0, 0,
-       "rows it took (capped); after an underrun, the row it lacked is the next one"}},
-     "Sent once when a trajectory ends: when it ran to its last row (at rest), or the moment a STOP, a "
-     "fault or an e-stop ends it (the robot then stops along the path)."},
+       FW_DOC("rows it took (capped); after an underrun, the row it lacked is the next one")}},
+     FW_DOC("Sent once when a trajectory ends: when it ran to its last row (at rest), or the moment a STOP, a "
+     "fault or an e-stop ends it (the robot then stops along the path).")},
 };

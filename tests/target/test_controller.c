@@ -249,6 +249,9 @@ static void host_drain(void)
             host.param_id = m.v[0];
             host.param_value = m.v[1];
             break;
+        case PM_MOVE_INFO: /* after a move's ACK: how it starts, what set its pace */
+        case PM_TRAJ_END:  /* how a trajectory ended */
+            break;
         default:
             ++host.undecodable;
         }

@@ -43,7 +43,7 @@ static board_clocks reset_clocks(const char *failed)
     /* Back to the internal oscillator with no prescalers, whatever was half done. */
     TSE_RCC->CFGR &= ~RCC_CFGR_SW_MASK;
     TSE_RCC->CR &= ~RCC_CR_PLLON;
-    const board_clocks c = {HSI_HZ, HSI_HZ, HSI_HZ, failed};
+    const board_clocks c = {HSI_HZ, HSI_HZ, HSI_HZ, HSI_HZ, failed};
     TSE_RCC->CFGR &= ~((0x7u << 10) | (0x7u << 13));
     return c;
 }
@@ -76,6 +76,6 @@ board_clocks board_clock_init(void)
         return reset_clocks("SWS");
 
     const uint32_t sysclk = HSE_HZ / PLL_M * PLL_N / PLL_P;
-    const board_clocks c = {sysclk, sysclk / 4u, sysclk / 2u, 0};
+    const board_clocks c = {sysclk, sysclk / 4u, sysclk / 2u, sysclk / 2u, 0};
     return c;
 }

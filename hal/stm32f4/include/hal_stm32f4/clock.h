@@ -15,6 +15,7 @@ typedef struct {
     uint32_t sysclk_hz;
     uint32_t apb1_hz;       /* the CAN controller's clock */
     uint32_t apb1_timer_hz; /* TIM2..TIM5 */
+    uint32_t apb2_hz;       /* USART1 (the boot line) */
     const char *failed;     /* NULL, or the flag that never came ("HSERDY", "PLLRDY", "SWS") */
 } board_clocks;
 

@@ -14,6 +14,7 @@
  * |                 |            | EXTI8 on the rising edge, interrupt EXTI9_5                  |
  * | CAN1_RX/TX      | PB8 / PB9  | alternate function 9, to the transceiver (e.g. TJA1051/SN65HVD230) |
  * | STATUS LED      | PA10       | push-pull, high = on (the Netduino Plus 2's user LED)        |
+ * | BOOT LINE TX    | PA9        | USART1 TX (AF7), 115200 8N1: one line at start-up (bootline.h) |
  * | SWDIO/SWCLK     | PA13/PA14  | programming and debug (ST-Link)                              |
  * | OSC_IN/OSC_OUT  | PH0/PH1    | 8 MHz crystal (HSE)                                          |
  *
@@ -61,6 +62,10 @@ static const unsigned char pin_limh[6] = {0, 1, 12, 13, 14, 15};
 
 #define PIN_LED_PORT TSE_GPIOA
 #define PIN_LED 10u
+
+#define PIN_BOOT_TX_PORT TSE_GPIOA
+#define PIN_BOOT_TX 9u
+#define PIN_BOOT_TX_AF 7u
 
 #define STEP_MASK_ALL 0x3Fu
 

@@ -1,0 +1,297 @@
+"""The production image (tse-fw.elf) on the TSE emulator, driven from the host through the
+emulator's two sockets (docs/emulator.md): the CAN records, through the project's own client
+(tse.can over a python-can bus on the socket), and the rig's text protocol.
+
+    test_board_emu.py ELF [unittest arguments, e.g. BoardEmu.test_boot]
+
+Each test starts its own emulator (emu/run.sh) with a fresh flash file.  Waits are counted in
+the emulator's virtual time (the rig's `time`), which runs slower than real time, with a
+real-time cap far beyond what they need; a test skips (exit 77) when the emulator is not built.
+"""
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(ROOT, "python"))
+
+import tse.can as tc  # noqa: E402  (python-can; scripts/setup.sh)
+from emu_session import Emulator  # noqa: E402
+
+ELF = None
+SKIP = 77
+NODE = 1
+# Real seconds a virtual second may take at most: the emulator runs at about a tenth of real
+# time on this project's 2-core machines when they are loaded (docs/emulator.md); 60 leaves
+# room for a machine several times slower than that.
+REAL_PER_VIRTUAL = 60.0
+
+
+def emulator_path():
+    """The emulator binary, or None when emu/build.sh has not built it for emu/ as it is."""
+    if os.environ.get("TSE_EMU_QEMU"):
+        return os.environ["TSE_EMU_QEMU"]
+    r = subprocess.run([os.path.join(ROOT, "emu", "build.sh"), "--path"], capture_output=True, text=True)
+    return r.stdout.strip().splitlines()[-1] if r.returncode == 0 and r.stdout.strip() else None
+
+
+class BoardEmu(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="tse-emu-")
+        self.emus = []
+
+    def tearDown(self):
+        for em in self.emus:
+            em.stop()
+        if sys.exc_info() == (None, None, None):
+            shutil.rmtree(self.dir, ignore_errors=True)
+
+    # -- helpers --
+    def start(self, **kwargs):
+        em = Emulator(ELF, self.dir, **kwargs)
+        self.emus.append(em)
+        em.start()
+        return em
+
+    def wait_virtual(self, em, seconds, until=None, what="condition"):
+        """Polls until(em) every few real ms until it is true (returns its value), or until
+        `seconds` of virtual time have passed (returns None without a condition, fails with
+        one).  Never longer than REAL_PER_VIRTUAL real seconds per virtual second."""
+        start = em.time_ns()
+        real_cap = 10.0 + REAL_PER_VIRTUAL * seconds
+        cap = time.monotonic() + real_cap
+        while True:
+            if until is not None:
+                got = until(em)
+                if got:
+                    return got
+            now = em.time_ns()
+            if now - start >= seconds * 1e9:
+                if until is not None:
+                    self.fail(f"no {what} within {seconds} s of virtual time")
+                return None
+            if time.monotonic() > cap:
+                self.fail(f"{seconds} s of virtual time took more than {real_cap:.0f} s of real time")
+            time.sleep(0.02)
+
+    def controller(self, em, timeout=60.0, heartbeat=True):
+        """tse.can's client on the emulator's bus, once the controller has spoken (frames sent
+        before it joins the bus are lost, as on a real bus)."""
+        bus = em.bus()
+        self.addCleanup(bus.shutdown)
+        c = tc.Controller(bus=bus, node=NODE, timeout=timeout, heartbeat=heartbeat)
+        self.addCleanup(c.close)  # cleanups run last first: the client, then its bus
+        c.status()
+        return c
+
+    def boot_lines(self, em):
+        return [line for line in em.read_console().splitlines() if line.startswith("tse-fw")]
+
+    # -- the tests --
+    def test_boot(self):
+        """Boots to disabled with no fault: the boot line says boot faults 0, STATUS says so."""
+        em = self.start()
+        c = self.controller(em)
+        st = c.status()
+        self.assertEqual((st.state, st.fault), ("disabled", "none"), st)
+        self.assertFalse(st.estop_open)
+        lines = self.wait_virtual(em, 1.0, lambda e: self.boot_lines(e), "boot line")
+        self.assertEqual(lines, [f"tse-fw node {NODE}: boot faults 0x00"])
+        self.assertEqual(em.rig("log"), ["end"])
+
+    def test_param_get_round_trip(self):
+        """PARAM_GET is answered (its value is the table's default); prints the round trip."""
+        em = self.start()
+        c = self.controller(em)
+        rtts, vrtts = [], []
+        for _ in range(5):
+            v0, t0 = em.time_ns(), time.monotonic()
+            self.assertEqual(c.params.get("steps_per_m"), 1280000)
+            rtts.append(time.monotonic() - t0)
+            vrtts.append((em.time_ns() - v0) / 1e6)
+        print(f"PARAM_GET round trip: real {min(rtts) * 1e3:.1f}..{max(rtts) * 1e3:.1f} ms "
+              f"(virtual, including the rig's reads, {min(vrtts):.2f}..{max(vrtts):.2f} ms)")
+
+    def test_no_crystal(self):
+        """A board without its crystal falls back to the internal oscillator and says so; CAN,
+        timed from 16 MHz, still talks."""
+        em = self.start(hse_hz=0)
+        c = self.controller(em)
+        st = c.status()
+        self.assertEqual((st.state, st.fault), ("fault", "hardware"), st)
+        lines = self.wait_virtual(em, 1.0, lambda e: self.boot_lines(e), "boot line")
+        self.assertEqual(lines, [f"tse-fw node {NODE}: boot faults 0x01; clock: no HSERDY"])
+
+    def test_enable_home(self):
+        """ENABLE and HOME: every slide goes down to its switch and then to the home pose; what
+        the rig counted is what the controller commanded, and no step broke the drivers'
+        timing."""
+        em = self.start()
+        c = self.controller(em)
+        start = em.slides()
+        self.assertEqual(start, [0.25] * 6)
+        lowest = list(start)
+
+        def track(e):
+            for k, s in enumerate(e.slides()):
+                lowest[k] = min(lowest[k], s)
+            return False
+        c.enable()
+        c.home(wait=False)
+        # Homing here: 50 mm down at homing_speed 20 mm/s, back off, creep, then the home pose.
+        self.wait_virtual(em, 20.0, lambda e: track(e) or c.status().state == "idle", "end of homing")
+        st = c.status()
+        self.assertEqual((st.state, st.fault, st.homed, st.enabled), ("idle", "none", True, True), st)
+        # Each slide reached its switch (0.2 m: pressed at and below) on the way.
+        for k in range(6):
+            self.assertLessEqual(lowest[k], 0.2 + 1e-3, f"slide {k + 1} never came near its switch")
+        tel = next(iter(c.watch(timeout=30.0, maxlen=1)))
+        rig = em.slides()
+        steps = [int(v) for v in em.rig("steps")[0].split()[1:]]
+        for k in range(6):
+            # The rig's position from its counted steps is the controller's commanded one.
+            self.assertAlmostEqual(rig[k], tel.slides[k], delta=1.5 / 1280000, msg=f"slide {k + 1}")
+            self.assertEqual(round((rig[k] - 0.25) * 1280000), steps[k])
+        self.assertGreater(min(rig), 0.2, "the home pose is above the switches")
+        self.assertEqual(em.rig("log"), ["end"], "steps that broke the drivers' pulse or DIR timing")
+
+    def test_estop_chain(self):
+        """Opening the e-stop chain (PA8, EXTI8) latches estop at once, drives off; once it is
+        closed again CLEAR_FAULT returns to disabled."""
+        em = self.start()
+        c = self.controller(em)
+        c.enable()
+        self.assertTrue(c.status().enabled)
+        em.rig("estop open")
+        st = self.wait_virtual(em, 0.5, lambda e: (lambda s: s if s.state == "estop" else None)(c.status()),
+                               "estop state")
+        self.assertTrue(st.estop_open)
+        self.assertFalse(st.enabled)
+        em.rig("estop closed")
+        self.wait_virtual(em, 0.5, lambda e: not c.status().estop_open, "the chain seen closed")
+        c.clear()
+        self.wait_virtual(em, 0.5, lambda e: c.status().state == "disabled", "disabled after CLEAR_FAULT")
+
+    def test_short_pulses_flagged(self):
+        """STEP pulses shorter than the drivers take (step_pulse_ns 1000 against the rig's
+        2500) are flagged with their width, the same every time (virtual time), and missed:
+        the slides do not move."""
+        em = self.start()
+        c = self.controller(em)
+        self.assertEqual(c.params.set("step_pulse_ns", 1000), 1000)
+        c.enable()
+        c.home(wait=False)
+        self.wait_virtual(em, 0.3)
+        log = em.rig("log")
+        self.assertEqual(log[-1], "end")
+        pulses = [line.split() for line in log if line.startswith("pulse ")]
+        self.assertGreater(len(pulses), 100, log[:5])
+        widths = {int(p[3]) for p in pulses}
+        self.assertEqual(len(widths), 1, f"pulse widths {sorted(widths)}")
+        self.assertTrue(1000 <= widths.pop() < 2500)
+        self.assertEqual({p[2] for p in pulses}, {"1", "2", "3", "4", "5", "6"})
+        self.assertEqual(em.slides(), [0.25] * 6)
+
+    def test_param_save_survives_power_cycle(self):
+        """A parameter set and saved is there after a power cycle (the rig's reset) and after
+        the emulator itself restarts on the same flash file; one set but not saved is not."""
+        em = self.start()
+        c = self.controller(em)
+        self.assertEqual(c.params.set("homing_speed", 0.025), 0.025)
+        c.params.save()
+        self.assertEqual(c.params.set("homing_backoff", 0.003), 0.003)  # not saved
+        counter = c.status().counter
+        em.rig("reset")
+        self.wait_virtual(em, 2.0, lambda e: c.status().counter < counter, "restart (STATUS counter)")
+        self.assertEqual(c.params.get("homing_speed"), 0.025)
+        self.assertEqual(c.params.get("homing_backoff"), 0.002)
+        st = c.status()
+        self.assertEqual((st.state, st.fault), ("disabled", "none"), "a power cycle is no fault")
+        em.stop()
+        em2 = self.start(flash=em.flash)
+        c2 = self.controller(em2)
+        self.assertEqual(c2.params.get("homing_speed"), 0.025)
+
+    def test_watchdog_reset(self):
+        """A main loop that stops feeding the watchdog is reset by it 2 s later (the firmware's
+        WATCHDOG_MS): stopped here by a debugger write of the ticker's idle hook."""
+        gdb = shutil.which("gdb-multiarch") or shutil.which("arm-none-eabi-gdb")
+        if not gdb:
+            self.skipTest("gdb-multiarch not installed (scripts/setup.sh)")
+        port = 20000 + os.getpid() % 20000
+        em = self.start(extra=("-gdb", f"tcp:127.0.0.1:{port}"))
+        c = self.controller(em)
+        self.wait_virtual(em, 3.0)  # fed all along: no reset
+        self.assertEqual(len(self.boot_lines(em)), 1, em.read_console())
+        r = subprocess.run([gdb, "-batch", "-nx", "-ex", f"file {ELF}", "-ex", f"target remote 127.0.0.1:{port}",
+                            "-ex", "set var tse_board.ticker.idle = 0", "-ex", "detach"],
+                           capture_output=True, text=True, timeout=60)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        t0 = em.time_ns()
+        self.wait_virtual(em, 4.0, lambda e: len(self.boot_lines(e)) == 2, "watchdog reset")
+        after = (em.time_ns() - t0) / 1e9
+        self.assertGreater(after, 1.9, "reset before the watchdog's 2 s")
+        lines = self.boot_lines(em)
+        self.assertEqual(lines[1], f"tse-fw node {NODE}: boot faults 0x04; reset by the watchdog")
+        self.wait_virtual(em, 1.0, lambda e: c.status().fault == "hardware", "hardware fault after the reset")
+
+    def test_bitrate_mismatch(self):
+        """On a 250 kbit/s bus the controller (500 kbit/s) hears nothing and is not heard; on
+        its own rate it is (test_boot)."""
+        em = self.start(bitrate=250000)
+        bus = em.bus()
+        self.addCleanup(bus.shutdown)
+        self.wait_virtual(em, 0.5)  # booted, and five STATUS periods
+        bus.send(tc.encode("PARAM_GET", NODE, param=11))
+        self.wait_virtual(em, 0.5)
+        frames = []
+        while True:
+            m = bus.recv(0)
+            if m is None:
+                break
+            frames.append(m)
+        self.assertEqual(frames, [], "frames crossed a bus of another bit rate")
+
+    def test_bus_off_and_recovery(self):
+        """A bus held in error (the rig's canerr) drives the controller's transmit errors to
+        bus-off; once it is released the controller recovers by itself and reports bus_off."""
+        em = self.start()
+        c = self.controller(em)
+        em.rig("canerr on")
+        # 32 failed transmissions (TEC + 8 each) take a few milliseconds; STATUS comes every
+        # 100 ms and is the first to fail.
+        self.wait_virtual(em, 0.5)
+        em.rig("canerr off")
+        st = self.wait_virtual(em, 1.0, lambda e: (lambda s: s if s.fault == "bus_off" else None)(c.status()),
+                               "bus_off fault")
+        self.assertEqual(st.state, "fault")
+
+
+def main():
+    global ELF
+    if len(sys.argv) < 2:
+        print(__doc__, file=sys.stderr)
+        return 2
+    ELF = os.path.abspath(sys.argv.pop(1))
+    if not os.path.exists(ELF):
+        print(f"no image {ELF}", file=sys.stderr)
+        return 2
+    qemu = emulator_path()
+    if not qemu:
+        print("SKIP: the TSE emulator is not built for emu/ as it is: run emu/build.sh "
+              "(or cmake --build --preset stm32f4 --target emu)")
+        return SKIP
+    os.environ["TSE_EMU_QEMU"] = qemu
+    prog = unittest.main(exit=False, verbosity=2)
+    return 0 if prog.result.wasSuccessful() else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
