@@ -55,4 +55,5 @@ elif [ "$emu_rc" -ne 0 ]; then
   echo "test.sh: emu/build.sh failed (exit $emu_rc)" >&2
   exit 1
 fi
-ctest --preset stm32f4 -L board-emu
+# Two at a time: a test on the host keeps one emulator (one core) busy; the VM tests run alone.
+ctest --preset stm32f4 -L board-emu -j "$jobs"

@@ -10,11 +10,12 @@ NODE=${NODE:-1}
 T="tsectl --iface vcan0 --node $NODE --timeout 20000"
 
 # controller_start [tse-sim arguments]: the controller is on the bus and has sent a STATUS.
+# SIM_WRAP (words): a command tse-sim runs under (python_can.sh: at a lower priority).
 controller_start() {
   if [ "$TSE_TARGET" = board ]; then
     $T status >/dev/null 2>&1
   else
-    tse-sim --iface vcan0 --node "$NODE" "$@" >sim.log 2>&1 &
+    ${SIM_WRAP:-} tse-sim --iface vcan0 --node "$NODE" "$@" >sim.log 2>&1 &
     sim_pid=$!
     sleep 0.5
     $T status >/dev/null 2>&1
