@@ -1,5 +1,12 @@
 #include "fw/reject.h"
 
+/* A position along the path, u in 0..1, in per mille. */
+static int32_t per_mille(tse_real u)
+{
+    const int32_t w = (int32_t)(u * TSE_R(1000.0) + TSE_R(0.5));
+    return w > 1000 ? 1000 : w < 0 ? 0 : w;
+}
+
 void fw_reject_values(uint8_t function, uint8_t seq, fw_reason reason, uint8_t field,
                       const fw_plan_result *why, int32_t v[PROTO_MAX_FIELDS])
 {
@@ -7,11 +14,7 @@ void fw_reject_values(uint8_t function, uint8_t seq, fw_reason reason, uint8_t f
     if (why && reason == FW_REASON_KINEMATICS) {
         scissor = why->scissor;
         status = why->status;
-        where = (int32_t)(why->where * TSE_R(1000.0) + TSE_R(0.5));
-        if (where > 1000)
-            where = 1000;
-        if (where < 0)
-            where = 0;
+        where = per_mille(why->where);
     } else if (why && reason == FW_REASON_TIMING) {
         scissor = why->scissor;
         fld = why->slide + FW_REJECT_LIMIT * (int32_t)(why->accel ? FW_LIMIT_SLIDE_AMAX : why->limit);
@@ -19,6 +22,13 @@ void fw_reject_values(uint8_t function, uint8_t seq, fw_reason reason, uint8_t f
         /* Capped to the field, a NaN included: a value out of range would not encode, and the
          * refusal would go unanswered. */
         where = pm < TSE_R(65535.0) ? (pm > TSE_R(0.0) ? (int32_t)pm : 0) : 65535;
+    } else if (why && reason == FW_REASON_TOO_LONG && why->status == TSE_OK) {
+        where = FW_MOVE_MAX_S; /* field 0: longer than a move may last */
+    } else if (why && reason == FW_REASON_TOO_LONG) {
+        fld = 1; /* too long to prove near the limit named */
+        scissor = why->scissor;
+        status = why->status;
+        where = per_mille(why->where);
     }
     v[0] = function & 0x7F;
     v[1] = seq;
