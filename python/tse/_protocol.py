@@ -47,6 +47,8 @@ CODES = {
         9: ("dir_setup_room", "the DIR set-up (dir_setup_ns, in whole step interrupts, plus one) must leave room for a step in a control segment that changes direction"),
         10: ("config", "the controller's step interrupt and control segment rates cannot run any set (a firmware configuration fault)"),
         11: ("not_at_rest", "the step generator was still running: parameters change only at rest (try again)"),
+        12: ("home_margins", "the home pose must pass its own margins (mu_min, nu_min) and stroke, or every move from it is refused"),
+        13: ("homing_path", "homing's final move, straight in slide space from the homing switches (home_sw_1..6) to the home pose, must pass valid poses only (within the workspace and both margins)"),
     },
 }
 
