@@ -1,10 +1,12 @@
 #include "fw/reject.h"
 
-/* A position along the path, u in 0..1, in per mille. */
+/* A position along the path, u in 0..1, in per mille: clamped before it is converted (a NaN to
+ * 0), for a conversion out of an integer's range is undefined. */
 static int32_t per_mille(tse_real u)
 {
-    const int32_t w = (int32_t)(u * TSE_R(1000.0) + TSE_R(0.5));
-    return w > 1000 ? 1000 : w < 0 ? 0 : w;
+    if (!(u > TSE_R(0.0)))
+        return 0;
+    return u >= TSE_R(1.0) ? 1000 : (int32_t)(u * TSE_R(1000.0) + TSE_R(0.5));
 }
 
 void fw_reject_values(uint8_t function, uint8_t seq, fw_reason reason, uint8_t field,

@@ -35,29 +35,30 @@ static int counted(const fw_move *mv, const tse_geometry *g, const fw_limits *li
     return rc;
 }
 
-static void geometry(tse_geometry *g, double home_q[6])
+/* The default design, the home pose's slides in home_q, and `to` the home pose moved to x, y. */
+static void geometry(tse_geometry *g, double home_q[6], double to[6], double x, double y)
 {
     tse_params p;
     tse_params_default(&p);
     assert_int_equal(tse_geometry_init(g, &p), TSE_PARAM_OK);
     tse_ik_result r;
     assert_int_equal(tse_ik(g, g->home_pose, NULL, &r), TSE_OK);
-    for (int k = 0; k < 6; ++k)
+    for (int k = 0; k < 6; ++k) {
         home_q[k] = r.q[k];
+        to[k] = g->home_pose[k];
+    }
+    to[0] = x;
+    to[1] = y;
 }
 
-/* Along x from home to 0.6 m, out of reach (the scissors' angle stops end the workspace near
- * x = 0.3 m), over durations from 1 s to the longest a move may last. */
+/* Along x from home to 0.6 m, out of reach (the path leaves the workspace 85 % of the way, near
+ * x = 0.51 m), over durations from 1 s to the longest a move may last. */
 static void test_refusal_work_does_not_grow_with_duration(void **state)
 {
     (void)state;
     tse_geometry g;
-    double q0[6];
-    geometry(&g, q0);
-    double to[6];
-    for (int k = 0; k < 6; ++k)
-        to[k] = g.home_pose[k];
-    to[0] = 0.6;
+    double q0[6], to[6];
+    geometry(&g, q0, to, 0.6, 0.0);
     static const double durations[] = {1.0, 10.0, 100.0, 1000.0, 3600.0};
     uint32_t most = 0, least = UINT32_MAX;
     for (size_t i = 0; i < sizeof durations / sizeof durations[0]; ++i) {
@@ -96,13 +97,8 @@ static void test_too_long_in_time(void **state)
 {
     (void)state;
     tse_geometry g;
-    double q0[6];
-    geometry(&g, q0);
-    double to[6];
-    for (int k = 0; k < 6; ++k)
-        to[k] = g.home_pose[k];
-    to[0] = 4.0;
-    to[1] = -2.0;
+    double q0[6], to[6];
+    geometry(&g, q0, to, 4.0, -2.0);
     static fw_move mv;
     fw_plan_result res;
     work = 0;
