@@ -13,6 +13,7 @@
  * hysteresis are crept.  Joint speeds ramp within the slide acceleration limit throughout, so a
  * stop or fault can bring homing to rest at any moment. */
 #include "fw/controller_internal.h"
+#include "fw/joint_path.h"
 
 /* The release creep runs at this fraction of the homing speed, and at most half a step per control
  * tick: the steps emitted are read once per tick, so with less than one step between two reads the
@@ -98,6 +99,15 @@ static void start_joint_move(fw_controller *c)
             longest = d;
     }
     stepgen_set_position(&c->sg, now); /* the zero: from here on steps count from s = 0 */
+    /* Validated as any move is before its first step (the parameter check has checked it from the
+     * switches themselves, fw_params_judge). */
+    tse_real where;
+    int scissor;
+    if (fw_joint_path_check(&c->geom, c->joint.from, &where, &scissor) != TSE_OK) {
+        c->pending_fault = FW_FAULT_HOMING;
+        finish(c, false);
+        return;
+    }
     const tse_real n = longest > TSE_R(0.0) ? longest : TSE_R(1.0);
     const tse_real jerk = c->lim.slide_amax * c->lim.plate_jmax / c->lim.plate_amax;
     fw_profile_plan(&c->joint.prof, longest > TSE_R(0.0) ? TSE_R(1.0) : TSE_R(0.0),
