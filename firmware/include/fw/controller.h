@@ -1,5 +1,6 @@
-/* The controller: the state machine of system.md, the CAN command handling, and the execution of
- * motion at the control segment rate.  Hardware-free: everything physical goes through fw_hal.
+/* The controller: the state machine of docs/controller.md, the CAN command handling, and the
+ * execution of motion at the control segment rate.  Hardware-free: everything physical goes
+ * through fw_hal.
  *
  * The platform drives it from three places, and may add a fourth:
  * - fw_step_tick from the step interrupt (step_hz),

@@ -14,8 +14,9 @@
 
 #define BIT(s) (1u << (s))
 
-/* The transitions system.md's controller behaviour and docs/protocol.md allow (bit `to` of
- * next_states[from]); an e-stop (command, input or interrupt) may come in any state after boot.
+/* The transitions docs/controller.md ("How the state changes") and docs/protocol.md allow (bit
+ * `to` of next_states[from]); an e-stop (command, input or interrupt) may come in any state after
+ * boot.
  *  boot: enters disabled once initialised.
  *  disabled: ENABLE energises (idle); a bus-off or a fault the platform reports latches a fault
  *    (nothing moves, so there is no stop to run first).
@@ -314,7 +315,7 @@ void oracle_after_control(rig *r)
 {
     const fw_controller *c = &r->c;
     /* The control tick supervises first: an e-stop input open before it began has put the
-     * controller in ESTOP by now (system.md: e-stop cuts stepping at once). */
+     * controller in ESTOP by now (docs/controller.md, "E-stop": it cuts stepping at once). */
     FUZZ_CHECK(!r->f.estop_open || o.cut_inside || c->state == FW_STATE_ESTOP);
     observe(r, true);
     /* Silence past the watchdog timeout, one control period to notice: the robot is being
