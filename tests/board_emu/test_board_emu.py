@@ -91,6 +91,13 @@ class BoardEmu(unittest.TestCase):
         c.status()
         return c
 
+    def restart_after(self, em, c, cause):
+        """Runs cause(), which power-cycles the board, and waits until it has restarted (its STATUS
+        counter starts again)."""
+        counter = c.status().counter
+        cause()
+        self.wait_virtual(em, 2.0, lambda e: c.status().counter < counter, "restart (STATUS counter)")
+
     def boot_lines(self, em):
         return [line for line in em.read_console().splitlines() if line.startswith("tse-fw")]
 
@@ -260,9 +267,7 @@ class BoardEmu(unittest.TestCase):
         self.assertEqual(c.params.set("homing_speed", 0.025), 0.025)
         c.params.save()
         self.assertEqual(c.params.set("homing_backoff", 0.003), 0.003)  # not saved
-        counter = c.status().counter
-        em.rig("reset")
-        self.wait_virtual(em, 2.0, lambda e: c.status().counter < counter, "restart (STATUS counter)")
+        self.restart_after(em, c, lambda: em.rig("reset"))
         self.assertEqual(c.params.get("homing_speed"), 0.025)
         self.assertEqual(c.params.get("homing_backoff"), 0.002)
         st = c.status()
@@ -284,9 +289,6 @@ class BoardEmu(unittest.TestCase):
             c.params.set("homing_speed", speed)
             c.params.set("homing_backoff", backoff)
 
-        def restarted(counter):
-            self.wait_virtual(em, 2.0, lambda e: c.status().counter < counter, "restart (STATUS counter)")
-
         def pair():
             return (round(c.params.get("homing_speed"), 6), round(c.params.get("homing_backoff"), 6))
 
@@ -306,9 +308,8 @@ class BoardEmu(unittest.TestCase):
             new = (round(0.023 + 0.001 * i, 6), round(0.0023 + 0.0001 * i, 6))
             set_pair(*new)
             em.rig(f"cutflash {k}")
-            counter = c.status().counter
-            c._send("PARAM_SAVE", magic=0x45564153)  # not c.params.save(): no ACK will come, the power goes
-            restarted(counter)
+            # Not c.params.save(): no ACK will come, the power goes.
+            self.restart_after(em, c, lambda: c._send("PARAM_SAVE", magic=0x45564153))
             got = pair()
             self.assertIn(got, (saved, new), f"cut at operation {k} of {per_save}: a mix, or neither set")
             outcomes.append(f"{k}: {'new' if got == new else 'old'}")
@@ -319,9 +320,7 @@ class BoardEmu(unittest.TestCase):
         # A save after all that works, and survives a power cycle.
         set_pair(0.03, 0.003)
         c.params.save()
-        counter = c.status().counter
-        em.rig("reset")
-        restarted(counter)
+        self.restart_after(em, c, lambda: em.rig("reset"))
         self.assertEqual(pair(), (0.03, 0.003))
 
     def test_watchdog_reset(self):
