@@ -99,7 +99,10 @@ class BoardEmu(unittest.TestCase):
         self.wait_virtual(em, 2.0, lambda e: c.status().counter < counter, "restart (STATUS counter)")
 
     def boot_lines(self, em):
-        return [line for line in em.read_console().splitlines() if line.startswith("tse-fw")]
+        """The boot lines the console holds whole: the UART writes a character at a time, and a
+        line still being written (no newline yet) is not one yet."""
+        whole = em.read_console().split("\n")[:-1]
+        return [line.rstrip("\r") for line in whole if line.startswith("tse-fw")]
 
     # -- the tests --
     def test_boot(self):
