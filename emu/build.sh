@@ -191,8 +191,9 @@ for tool in meson ninja pkg-config cc; do
   command -v $tool >/dev/null || die "$tool missing: run scripts/setup.sh"
 done
 # arm-softmmu only, nothing QEMU would build by default, no edk2 blobs (Debian's tarball has
-# none).  (QEMU's QOM cast checks stay on: without them a cast to a class with interfaces loses
-# its cache and the core's class lookups cost more, not less.)
+# none).  QEMU's QOM cast checks are off (its release default); emu/qemu/tse.patch gives the
+# class cast cache to that configuration, without which every CPU_GET_CLASS of a class with
+# interfaces (the Cortex-M's) is a string-hash lookup.
 configure_args=(--target-list=arm-softmmu --without-default-features --without-default-devices
                 --disable-install-blobs --enable-fdt=system --disable-docs --audio-drv-list=)
 if [ ! -f "$bld/build.ninja" ] || [ "$(cat "$bld/.tse-configure" 2>/dev/null)" != "${configure_args[*]}" ]; then

@@ -36,8 +36,8 @@ FOUND = {}
 def ctl():
     with tcan.Controller("vcan0", node=1, timeout=5.0) as c:
         if BOARD:
-            # The emulated board runs at about a quarter of real time (docs/emulator.md): a brisker
-            # homing speed keeps the suite's several homings to minutes.  The watchdog at 3 s: the
+            # The emulated board runs slower than real time while slides step (docs/emulator.md): a
+            # brisker homing speed keeps the suite's several homings to minutes.  The watchdog at 3 s: the
             # harness's VM, where this client runs, may stall longer than the default 500 ms (tse-sim
             # there has 5 s, python_can.sh).  The board starts disabled, where parameters change.
             c.params["homing_speed"] = 0.1
