@@ -156,3 +156,27 @@ void csv_put_nans(FILE *f, int n)
     for (int k = 0; k < n; ++k)
         fputs(",nan", f);
 }
+
+int csv_is_blank_or_comment(const char *s, size_t len)
+{
+    size_t i = 0;
+    while (i < len && (s[i] == ' ' || s[i] == '\t' || s[i] == '\r'))
+        ++i;
+    return i == len || s[i] == '#';
+}
+
+const char *csv_shown(csv_span f, char *buf, size_t cap)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < f.len && n + 4 < cap; ++i) {
+        if (i == CSV_SHOWN_MAX) {
+            memcpy(buf + n, "...", 3);
+            n += 3;
+            break;
+        }
+        const unsigned char c = (unsigned char)f.text[i];
+        buf[n++] = (char)(c < 0x20 || c == 0x7f ? '?' : c);
+    }
+    buf[n] = '\0';
+    return buf;
+}

@@ -45,6 +45,15 @@ int csv_split(const char *line, size_t len, csv_span *fields, int max);
  * ("t, X ,y,..." for {"t", "x", "y", ...}). */
 int csv_is_header(const char *line, size_t len, const char *const *names, int n);
 
+/* Whether a line is blank (spaces, tabs, a CR) or a comment (its first other character '#'):
+ * what the CSV files' readers skip. */
+int csv_is_blank_or_comment(const char *s, size_t len);
+
+/* A field as written, made safe to quote in a message: at most CSV_SHOWN_MAX bytes then "...",
+ * control bytes as '?'.  Returns buf (cap at least CSV_SHOWN_MAX + 8). */
+#define CSV_SHOWN_MAX 40
+const char *csv_shown(csv_span f, char *buf, size_t cap);
+
 /* Writes ",x" for each of the n numbers. */
 void csv_put_numbers(FILE *f, const double *v, int n);
 

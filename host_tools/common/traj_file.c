@@ -12,7 +12,7 @@
 #include "csv.h"
 #include "line_reader.h"
 
-enum { COLS = 7, SHOWN_MAX = 40 };
+enum { COLS = 7 };
 
 static const char *const names[COLS] = {"t", "x", "y", "z", "roll", "pitch", "yaw"};
 #define NAMES_TEXT "t,x,y,z,roll,pitch,yaw"
@@ -30,23 +30,6 @@ long long traj_time_us(double t)
     return llround(us);
 }
 
-/* A field as written, made safe to print: at most SHOWN_MAX bytes, control bytes as '?'. */
-static const char *shown(csv_span f, char *buf, size_t cap)
-{
-    size_t n = 0;
-    for (size_t i = 0; i < f.len && n + 4 < cap; ++i) {
-        if (i == SHOWN_MAX) {
-            memcpy(buf + n, "...", 3);
-            n += 3;
-            break;
-        }
-        const unsigned char c = (unsigned char)f.text[i];
-        buf[n++] = (char)(c < 0x20 || c == 0x7f ? '?' : c);
-    }
-    buf[n] = '\0';
-    return buf;
-}
-
 typedef struct {
     const char *path;
     char *err;
@@ -62,14 +45,6 @@ __attribute__((format(printf, 3, 4))) static int fail_line(const ctx *c, int lin
     va_end(ap);
     snprintf(c->err, c->errlen, "%s:%d: %s", c->path, line, what);
     return -1;
-}
-
-static int is_blank_or_comment(const char *s, size_t len)
-{
-    size_t i = 0;
-    while (i < len && (s[i] == ' ' || s[i] == '\t' || s[i] == '\r'))
-        ++i;
-    return i == len || s[i] == '#';
 }
 
 /* Whether the first field of the row is a number (what tells a row from a would-be header). */
@@ -97,19 +72,19 @@ static int parse_row(const ctx *c, int line, const char *s, size_t len, traj_row
     }
     double v[COLS];
     csv_error e;
-    char buf[SHOWN_MAX + 8], col[32];
+    char buf[CSV_SHOWN_MAX + 8], col[32];
     if (csv_parse_fields(s, len, v, COLS, &e) != COLS) {
         snprintf(col, sizeof col, "column %d (%s)", e.column, e.column >= 1 ? names[e.column - 1] : "?");
         if (!strcmp(e.why, "empty field"))
             return fail_line(c, line, "%s: empty", col);
         if (!strcmp(e.why, "field too long"))
             return fail_line(c, line, "%s: longer than 127 characters", col);
-        return fail_line(c, line, "%s: not a number '%s'", col, shown(e.field, buf, sizeof buf));
+        return fail_line(c, line, "%s: not a number '%s'", col, csv_shown(e.field, buf, sizeof buf));
     }
     for (int k = 0; k < COLS; ++k) {
         snprintf(col, sizeof col, "column %d (%s)", k + 1, names[k]);
         if (!isfinite(v[k]))
-            return fail_line(c, line, "%s: not a finite number '%s'", col, shown(f[k], buf, sizeof buf));
+            return fail_line(c, line, "%s: not a finite number '%s'", col, csv_shown(f[k], buf, sizeof buf));
         if (k == 0)
             continue;
         const int angle = k >= 4;
@@ -118,7 +93,7 @@ static int parse_row(const ctx *c, int line, const char *s, size_t len, traj_row
             return fail_line(c, line,
                              angle ? "%s = %s rad is outside the wire's range -3.141593..3.141593 rad"
                                    : "%s = %s m is outside the wire's range -4..4 m",
-                             col, shown(f[k], buf, sizeof buf));
+                             col, csv_shown(f[k], buf, sizeof buf));
     }
     r->t = v[0];
     memcpy(r->p, v + 1, sizeof r->p);
@@ -195,17 +170,17 @@ static int read_rows(const ctx *c, FILE *f, traj_row **rows)
             fail_line(c, line, "NUL byte in the line (not a text file?)");
             goto out;
         }
-        if (is_blank_or_comment(s, len))
+        if (csv_is_blank_or_comment(s, len))
             continue;
         const int first = !seen_content;
         seen_content = 1;
         if (first && csv_is_header(s, len, names, COLS))
             continue;
         if (first && !starts_with_number(s, len)) {
-            char buf[SHOWN_MAX + 8];
+            char buf[CSV_SHOWN_MAX + 8];
             const csv_span whole = {s, len};
             fail_line(c, line, "neither the header " NAMES_TEXT " nor a row of 7 numbers: '%s'",
-                      shown(whole, buf, sizeof buf));
+                      csv_shown(whole, buf, sizeof buf));
             goto out;
         }
         if (n == TRAJ_FILE_MAX_ROWS) {

@@ -13,7 +13,8 @@
 enum {
     KIN_EXIT_OK = 0,    /* the input was read to its end (or the command finished) */
     KIN_EXIT_FILE = 1,  /* a file (parameters, stdin, stdout) could not be read, written or used */
-    KIN_EXIT_USAGE = 2  /* bad command line */
+    KIN_EXIT_USAGE = 2,  /* bad command line */
+    KIN_EXIT_REFUSED = 3 /* plan, check: the path or the trajectory is refused (named on stderr) */
 };
 
 typedef struct {
@@ -34,6 +35,8 @@ int cmd_params(const kin_run *run);
 int cmd_sweep(const kin_run *run);
 int cmd_profile(const kin_run *run);
 int cmd_margins(const kin_run *run);
+int cmd_plan(const kin_run *run);
+int cmd_check(const kin_run *run);
 /* workspace --points */
 int cmd_workspace_points(const kin_run *run);
 /* The '#' lines of both workspace forms: the grid, the orientation and how the volume is summed. */
@@ -60,6 +63,8 @@ extern const char cmd_params_help[];
 extern const char cmd_sweep_help[];
 extern const char cmd_profile_help[];
 extern const char cmd_margins_help[];
+extern const char cmd_plan_help[];
+extern const char cmd_check_help[];
 
 /* Shared paragraphs of the usage texts. */
 #define KIN_HELP_PARAMS                                                                                      \

@@ -8,12 +8,16 @@
 #include <string.h>
 
 #include "commands.h"
+#include "controller_set.h"
+
+enum { CONTROLLER_SET = 2 };
 
 typedef struct {
     const char *name;
     const char *summary;
     unsigned options;
-    int needs_design; /* whether main builds the design in the chosen precision */
+    int needs_design; /* whether main builds the design in the chosen precision; CONTROLLER_SET: the
+                       * command reads --params as the controller's whole set (controller_set.h) */
     int (*run)(const kin_run *run);
     const char *help;
     int (*check)(const kin_options *o, char *err, size_t errlen); /* NULL: options.c's checks suffice */
@@ -43,6 +47,11 @@ static const command commands[] = {
      cmd_profile_check},
     {"margins", "poses -> status,scissor,mu1,mu2,mu3,nu (where singularities lie)",
      KIN_OPT_PARAMS | KIN_OPT_PRECISION, 1, cmd_margins, cmd_margins_help, NULL},
+    {"plan", "WAYPOINTS.csv -> a trajectory the controller accepts, near the fastest",
+     KIN_OPT_ARGS | KIN_OPT_PARAMS | KIN_OPT_BLEND | KIN_OPT_PERIOD, CONTROLLER_SET, cmd_plan, cmd_plan_help,
+     cmd_one_file_check},
+    {"check", "TRAJ.csv judged by the controller's validator, offline", KIN_OPT_ARGS | KIN_OPT_PARAMS, CONTROLLER_SET,
+     cmd_check, cmd_check_help, cmd_one_file_check},
 };
 enum { N_COMMANDS = (int)(sizeof commands / sizeof commands[0]) };
 
@@ -67,6 +76,8 @@ static void print_usage(FILE *f)
           "  --n N                      bench trajectory length (default 2000); profile heights (60)\n"
           "  --points                   workspace: the grid points, not their count\n"
           "  --jobs J                   sweep threads (default: the number of cores)\n"
+          "  --blend M                  plan: cut corners by at most M metres (default 0: through each)\n"
+          "  --period S                 plan: rows' spacing in seconds (default 0.02)\n"
           "  --help                     usage, of the tool or of a command\n"
           "\n" KIN_HELP_ROWS "\n" KIN_HELP_PARAMS "\n" KIN_HELP_EXIT,
           f);
@@ -106,7 +117,7 @@ static int run_command(const command *c, int argc, char **argv)
     kin_param_values params;
     kin_params_default(&params);
     const char *params_name = "the default parameters";
-    if (opt.params_path) {
+    if (opt.params_path && c->needs_design != CONTROLLER_SET) {
         params_name = opt.params_path;
         if (kin_params_load(opt.params_path, &params, msg, sizeof msg) != KIN_PARAMS_OK) {
             fprintf(stderr, "tse-kin: %s\n", msg);
@@ -118,7 +129,7 @@ static int run_command(const command *c, int argc, char **argv)
     /* As long-lived as run.ctx: create() only writes it, but a checker that cannot see into
      * create() must assume the context keeps its address. */
     tse_param_id bad;
-    if (c->needs_design) {
+    if (c->needs_design == 1) {
         run.ctx = run.ops->create(&params, &bad);
         if (!run.ctx) {
             char note[64];
@@ -159,7 +170,7 @@ int main(int argc, char **argv)
         char msg[256];
         snprintf(msg, sizeof msg,
                  "unknown command '%.60s' (commands: ik, fk, jacobian, haf, workspace, bench, params, sweep, "
-                 "profile, margins)", name);
+                 "profile, margins, plan, check)", name);
         return usage_error(NULL, msg);
     }
     /* --help wins over anything else on the line, even a mistake. */

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "csv.h"
+#include "text.h"
 
 void kin_options_default(kin_options *o)
 {
@@ -34,6 +35,8 @@ static const option_def defs[] = {
     {"--n", KIN_OPT_N, 1},
     {"--points", KIN_OPT_POINTS, 0},
     {"--jobs", KIN_OPT_JOBS, 1},
+    {"--blend", KIN_OPT_BLEND, 1},
+    {"--period", KIN_OPT_PERIOD, 1},
 };
 
 /* A whole decimal number in [lo, hi], nothing around it. */
@@ -143,6 +146,20 @@ static int apply(unsigned bit, const char *name, const char *val, kin_options *o
         o->jobs = (int)j;
         return 0;
     }
+    case KIN_OPT_BLEND:
+        if (text_number(val, &o->blend) != 0 || !(o->blend >= 0.0 && o->blend <= KIN_BLEND_MAX)) {
+            snprintf(err, errlen, "%s takes a corner tolerance in metres from 0 to %g; got '%s'", name, KIN_BLEND_MAX,
+                     val);
+            return -1;
+        }
+        return 0;
+    case KIN_OPT_PERIOD:
+        if (text_number(val, &o->period) != 0 || !(o->period >= KIN_PERIOD_MIN && o->period <= KIN_PERIOD_MAX)) {
+            snprintf(err, errlen, "%s takes the rows' spacing in seconds from %g to %g; got '%s'", name, KIN_PERIOD_MIN,
+                     KIN_PERIOD_MAX, val);
+            return -1;
+        }
+        return 0;
     default:
         break;
     }

@@ -19,7 +19,9 @@ enum {
     KIN_OPT_N = 1u << 5,           /* --n N */
     KIN_OPT_POINTS = 1u << 6,      /* --points (a switch: no value) */
     KIN_OPT_JOBS = 1u << 7,        /* --jobs J */
-    KIN_OPT_ARGS = 1u << 8         /* positional arguments: anything not starting with "--" */
+    KIN_OPT_ARGS = 1u << 8,        /* positional arguments: anything not starting with "--" */
+    KIN_OPT_BLEND = 1u << 9,       /* --blend M */
+    KIN_OPT_PERIOD = 1u << 10      /* --period S */
 };
 
 #define KIN_MAX_Z 256
@@ -35,6 +37,10 @@ enum {
 #define KIN_DEFAULT_GRID_PHI 36
 #define KIN_DEFAULT_GRID_Z 41
 #define KIN_DEFAULT_BENCH_N 2000
+/* --blend and --period: plan's ranges (planner/include/plan/plan.h says why). */
+#define KIN_BLEND_MAX 1.0
+#define KIN_PERIOD_MIN 0.001
+#define KIN_PERIOD_MAX 1.0
 
 typedef struct {
     const char *params_path;  /* NULL: the prototype's parameters */
@@ -47,6 +53,8 @@ typedef struct {
     int grid_set, n_set;      /* --grid, --n given (commands with other defaults than these) */
     int points;               /* --points */
     int jobs;                 /* --jobs; 0: the number of cores */
+    double blend;             /* --blend [m]; 0: none */
+    double period;            /* --period [s]; 0: the command's default */
     const char *args[KIN_MAX_ARGS]; /* positional arguments, in order */
     int n_args;
 } kin_options;

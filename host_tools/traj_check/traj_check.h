@@ -1,5 +1,5 @@
-/* A whole trajectory file checked before anything is sent: the shared checker (traj_checker.h,
- * the controller's own validator) over the file's rows. */
+/* A whole trajectory file checked before anything is sent (tsectl trajectory, tse-kin check): the
+ * shared checker (traj_checker.h, the controller's own validator) over the file's rows. */
 #ifndef TSECTL_TRAJ_CHECK_H
 #define TSECTL_TRAJ_CHECK_H
 

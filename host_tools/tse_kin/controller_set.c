@@ -1,0 +1,27 @@
+#include "controller_set.h"
+
+#include <stdio.h>
+
+#include "param_text.h"
+
+int kin_controller_set(const kin_run *run, fw_param_set *s)
+{
+    fw_params_default(s);
+    if (!run->opt->params_path)
+        return KIN_EXIT_OK;
+    char err[512];
+    if (param_file_read(run->opt->params_path, s, err, sizeof err) != 0) {
+        fprintf(stderr, "tse-kin: %s\n", err);
+        return KIN_EXIT_FILE;
+    }
+    return KIN_EXIT_OK;
+}
+
+int cmd_one_file_check(const kin_options *o, char *err, size_t errlen)
+{
+    if (o->n_args != 1) {
+        snprintf(err, errlen, o->n_args ? "takes one FILE, not %d" : "needs a CSV FILE", o->n_args);
+        return -1;
+    }
+    return 0;
+}
