@@ -786,5 +786,79 @@ for orient in ("0,0,0", "0,0.3490658503988659,0"):
           rel(said, by_hand) < 1e-12 and rel(float(w.split("\n")[-2].split(",")[3]), by_hand) < 1e-12,
           f"{said} {w.splitlines()[-1]} vs {by_hand}")
 
+# ---------------------------------------------------------------- plan and check (issue 25)
+for cmd in ("plan", "check"):
+    for form in ([cmd, "--help"], ["help", cmd], [cmd, "x.csv", "--bogus", "-h"]):
+        rc, out, err = run(form)
+        check(f"{' '.join(form)} prints its usage", rc == 0 and out.startswith(f"usage: tse-kin {cmd}") and err == "",
+              f"rc {rc} {out[:60]!r}")
+rc, out, err = run(["--help"])
+check("tse-kin --help lists plan, check, --blend and --period",
+      all(f"\n  {c} " in out for c in ("plan", "check")) and "--blend" in out and "--period" in out, out)
+vert = write("vert.csv", "# a straight rise\nx,y,z,roll,pitch,yaw\n0,0,0.9,0,0,0\n\n0,0,1.2,0,0,0\n")
+for args, name, says in [(["plan"], "plan without a file", "FILE"), (["plan", vert, vert], "plan with two files", "one FILE"),
+                         (["plan", "--blend", "-1", vert], "a negative blend", "--blend"),
+                         (["plan", "--period", "0", vert], "a zero period", "--period"),
+                         (["plan", "--period", "2", vert], "a period above 1 s", "--period"),
+                         (["check", "--blend", "0.1", vert], "check --blend", "--blend"),
+                         (["plan", "--precision", "float", vert], "plan --precision", "--precision")]:
+    rc, out, err = run(args)
+    check(f"{name} exits 2 naming {says!r}", rc == 2 and out == "" and says in err, f"rc {rc} {err!r}")
+for text, line, says, name in [
+        ("x,y,z,roll,pitch,yaw\n0,0,1,0,0,0\n0,0,abc,0,0,0\n", 3, "column 3 (z)", "a non-number"),
+        ("0,0,1,0,0,0\n0,0,1.1,0,0\n", 2, "5 columns", "a short row"),
+        ("z,y,x,yaw,pitch,roll,t\n1,0,0,0,0,0,\n1.1,0,0,0,0,0,0.5\n1.2,0,0,0,0,0,0.4\n", 4, "does not come after",
+         "times out of order"),
+        ("x,y,z,roll,pitch,yaw,v\n0,0,1,0,0,0,0\n0,0,1.1,0,0,0,\n", 2, "above 0", "a zero speed cap"),
+        ("x,y,z,roll,pitch,yaw,x\n", 1, "named twice", "a column named twice"),
+        ("x,y,z,roll,pitch\n", 1, "no column yaw", "a header without yaw"),
+        ("0,0,1,0,0,4\n0,0,1,0,0,0\n", 1, "wire's range", "an angle beyond the wire")]:
+    path = write("bad_waypoints.csv", text)
+    rc, out, err = run(["plan", path])
+    check(f"plan of {name} exits 1 naming FILE:LINE and {says!r}, writing nothing",
+          rc == 1 and out == "" and f"{path}:{line}:" in err and says in err, f"rc {rc} {err!r}")
+rc, out, err = run(["plan", write("one.csv", "0,0,1,0,0,0\n")])
+check("plan of one waypoint exits 1", rc == 1 and out == "" and "at least 2" in err, err)
+rc, out, err = run(["plan", write("outside.csv", "0,0,1,0,0,0\n0,0,1.1,0,0,0\n0,0,1.7,0,0,0\n")])
+check("plan of a waypoint outside the workspace exits 3 naming it, writing nothing",
+      rc == 3 and out == "" and "waypoint 3 (line 3)" in err, f"rc {rc} {err!r}")
+rc, out, err = run(["plan", write("between.csv", "0.15,0,0.32,0,0,0\n0,0,0.32,0,0,0\n")])
+check("plan of a path leaving the workspace between two waypoints names both and the angle stop",
+      rc == 3 and out == "" and "waypoint 1 (line 1) to waypoint 2 (line 2)" in err and "alpha" in err, f"rc {rc} {err!r}")
+rc, out, err = run(["plan", write("late.csv", "x,y,z,roll,pitch,yaw,t\n0,0,0.9,0,0,0,0\n0,0,1.2,0,0,0,0.2\n")])
+check("plan of a time the slides cannot keep exits 3 naming the waypoint and the earliest time",
+      rc == 3 and "waypoint 2 (line 3)" in err and "need until" in err, f"rc {rc} {err!r}")
+rc, out, err = run(["plan", "--period", "0.01", vert])
+traj = write("vert.traj", out)
+rows = [r for r in out.splitlines() if r and r[0].isdigit()]
+check("plan writes a header and rows of seven numbers, in whole microseconds and micrometres",
+      rc == 0 and "\nt,x,y,z,roll,pitch,yaw\n" in out and len(rows) > 10 and
+      all(len(r.split(",")) == 7 and all(len(f.split(".")[1]) == 6 for f in r.split(",")) for r in rows), out[:300])
+check("plan's first row holds the first waypoint 1 ms in, its last is the last waypoint",
+      rows[0] == "0.001000,0.000000,0.000000,0.900000,0.000000,0.000000,0.000000" and
+      rows[-1].endswith(",0.000000,0.000000,1.200000,0.000000,0.000000,0.000000"), f"{rows[0]} {rows[-1]}")
+s_lo, s_hi = vertical(0.9)[0], vertical(1.2)[0]
+ds, v, a = abs(s_hi - s_lo), 0.1392, 1.0  # the step generator's speed limit in effect, slide_amax
+T = float(rows[-1].split(",")[0]) - 0.001
+check("plan of the vertical line takes the bang-bang time of its slides within 2 %",
+      abs(T / (ds / v + v / a) - 1) < 0.02, f"{T} vs {ds / v + v / a}")
+rc, out, err = run(["check", traj])
+check("check accepts what plan wrote, saying the peaks", rc == 0 and "accepted" in out and err == "", f"rc {rc} {err!r}")
+slow = write("slow.params", "slide_amax = 0.5\n")
+rc, out, err = run(["check", "--params", slow, traj])
+check("check with a lower slide_amax refuses it: exit 3, FILE:LINE, tsectl's words, the slide and how far over",
+      rc == 3 and out == "" and f"{traj}:" in err and "rejected: timing" in err and "slide_amax" in err, f"rc {rc} {err!r}")
+rc, out, err = run(["plan", "--params", slow, "--period", "0.01", vert])
+check("plan under that parameter file takes longer, and check with it accepts it",
+      rc == 0 and float([r for r in out.splitlines() if r and r[0].isdigit()][-1].split(",")[0]) > T + 0.05 and
+      run(["check", "--params", slow, write("vert_slow.traj", out)])[0] == 0, f"rc {rc} {err!r}")
+rc, out, err = run(["check", write("jump.traj", "t,x,y,z,roll,pitch,yaw\n0.02,0,0,1,0,0,0\n0.04,0,0,1.1,0,0,0\n")])
+check("check of a jump exits 3 naming its line and the slide's speed limit",
+      rc == 3 and "jump.traj:3: row 2" in err and "speed" in err, f"rc {rc} {err!r}")
+rc, out, err = run(["check", write("badrow.traj", "0.02,0,0,1,0,0,0\n0.01,0,0,1,0,0,0\n")])
+check("check of a row out of time order exits 1 naming its line", rc == 1 and "badrow.traj:2:" in err, f"rc {rc} {err!r}")
+rc, out, err = run(["check", "--params", write("bad.params", "slide_amax = x\n"), traj])
+check("check with a bad parameter file exits 1 naming its line", rc == 1 and "bad.params:1:" in err, f"rc {rc} {err!r}")
+
 print(f"{passes} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)

@@ -1,0 +1,233 @@
+/* Plans of many paths: every one accepted by the controller's validator (judged here, row by row,
+ * not by the planner's word), fast (at 60 % or more of the rows outside the first and last 5 % of
+ * the time some slide is at 90 % or more of its speed or acceleration limit), through every
+ * waypoint (within 10 um) or cutting corners by at most the blend asked; times kept; and refusals
+ * that name the waypoint and the reason. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "plan_support.h"
+
+#define PI 3.14159265358979323846
+
+/* The distance from point c to the segment a-b, in position [m]. */
+static double to_segment(const double a[3], const double b[3], const double c[3])
+{
+    double ab[3], ac[3], l2 = 0.0, d = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        ab[k] = b[k] - a[k];
+        ac[k] = c[k] - a[k];
+        l2 += ab[k] * ab[k];
+        d += ab[k] * ac[k];
+    }
+    const double u = l2 > 0.0 ? fmin(fmax(d / l2, 0.0), 1.0) : 0.0;
+    double e = 0.0;
+    for (int k = 0; k < 3; ++k)
+        e += pow(a[k] + u * ab[k] - c[k], 2);
+    return sqrt(e);
+}
+
+/* The least distance from each waypoint to the path the controller runs (straight between rows, from
+ * the start at `from`). */
+static double farthest_waypoint(const plan *p, const double from[3], const plan_waypoint *wp, int n)
+{
+    double worst = 0.0;
+    for (int w = 0; w < n; ++w) {
+        double best = INFINITY, prev[3];
+        memcpy(prev, from, sizeof prev);
+        plan_cursor c;
+        plan_row row;
+        for (plan_rows_begin(p, &c); plan_rows_next(p, &c, &row);) {
+            best = fmin(best, to_segment(prev, row.pose, wp[w].pose));
+            memcpy(prev, row.pose, sizeof prev);
+        }
+        worst = fmax(worst, best);
+    }
+    return worst;
+}
+
+static unsigned long long rng = 0x9E3779B97F4A7C15ull;
+static double uniform(double lo, double hi)
+{
+    rng = rng * 6364136223846793005ull + 1442695040888963407ull;
+    return lo + (hi - lo) * (double)(rng >> 11) / 9007199254740992.0;
+}
+
+static void test_random_paths(void **state)
+{
+    (void)state;
+    const double periods[] = {0.02, 0.01};
+    long mid = 0, near = 0;
+    for (int set = 0; set < 24; ++set) {
+        plan_waypoint wp[12];
+        const int n = 3 + set % 10;
+        for (int i = 0; i < n; ++i)
+            wp[i] = waypoint(uniform(-0.06, 0.06), uniform(-0.06, 0.06), uniform(0.95, 1.15), uniform(-0.04, 0.04),
+                             uniform(-0.04, 0.04), uniform(-0.2, 0.2));
+        plan_options o;
+        plan_options_default(&o);
+        o.period = periods[set % 2];
+        o.blend = set % 3 == 2 ? 0.004 : 0.0;
+        plan_result r;
+        plan *p = make_plan(NULL, wp, n, &o, &r);
+        char why[512];
+        if (!p)
+            fail_msg("set %d: %s", set, plan_explain(&r, wp, why, sizeof why));
+        const judged j = judge_rows(NULL, p, wp[0].pose);
+        assert_int_equal(j.refused_row, -1);
+        assert_true(j.v_peak <= 1.0 && j.a_peak <= 1.0);
+        const double share = (double)j.rows_near / (double)j.rows_mid;
+        printf("# set %2d: %2d waypoints, %s, rows %.2f s apart: %.3f s, %ld rows; %.0f %% of rows near a limit\n", set,
+               n, o.blend > 0 ? "blend 4 mm" : "spline", o.period, plan_duration(p), plan_row_count(p), 100.0 * share);
+        assert_true(share >= 0.6);
+        if (o.blend == 0.0)
+            assert_true(farthest_waypoint(p, wp[0].pose, wp, n) <= 10e-6);
+        mid += j.rows_mid;
+        near += j.rows_near;
+        free_plan(p);
+    }
+    printf("# all sets: %.1f %% of rows near a limit\n", 100.0 * (double)near / (double)mid);
+}
+
+/* A square's corners are cut, by at most the blend asked (the blend's middle is l |d2 - d1| / 4 from
+ * the corner: within it, and the controller's rows lie on it within the rounding). */
+static void test_blend_cuts_corners(void **state)
+{
+    (void)state;
+    const double a = 0.04;
+    const plan_waypoint wp[5] = {waypoint(0, 0, 1.0, 0, 0, 0), waypoint(a, 0, 1.0, 0, 0, 0), waypoint(a, a, 1.0, 0, 0, 0),
+                                 waypoint(0, a, 1.0, 0, 0, 0), waypoint(0, 0, 1.0, 0, 0, 0)};
+    const double blends[] = {0.001, 0.005};
+    double T[2];
+    for (int k = 0; k < 2; ++k) {
+        plan_options o;
+        plan_options_default(&o);
+        o.blend = blends[k];
+        plan_result r;
+        plan *p = make_plan(NULL, wp, 5, &o, &r);
+        assert_non_null(p);
+        assert_int_equal(judge_rows(NULL, p, wp[0].pose).refused_row, -1);
+        for (int w = 1; w < 4; ++w) {
+            const double d = farthest_waypoint(p, wp[0].pose, &wp[w], 1);
+            assert_true(d <= blends[k] + 2e-6);
+            assert_true(d >= 0.5 * blends[k]); /* and it is cut, not stopped at */
+        }
+        T[k] = plan_duration(p);
+        free_plan(p);
+    }
+    /* A wider blend lets the plate keep more speed through the corners. */
+    assert_true(T[1] < T[0]);
+}
+
+static void test_times_kept(void **state)
+{
+    (void)state;
+    plan_waypoint wp[4] = {waypoint(0, 0, 1.0, 0, 0, 0), waypoint(0.03, 0, 1.0, 0, 0, 0), waypoint(0.03, 0.03, 1.05, 0, 0, 0),
+                           waypoint(0, 0.03, 1.0, 0, 0, 0.1)};
+    wp[2].t = 3.0;
+    wp[3].t = 4.5;
+    plan_result r;
+    plan *p = make_plan(NULL, wp, 4, NULL, &r);
+    assert_non_null(p);
+    assert_int_equal(judge_rows(NULL, p, wp[0].pose).refused_row, -1);
+    /* The rows hold one at each waypoint: the row nearest waypoint 3 is at its t, within a millisecond. */
+    plan_cursor c;
+    plan_row row;
+    int hit = 0;
+    for (plan_rows_begin(p, &c); plan_rows_next(p, &c, &row);) {
+        double d = 0.0;
+        for (int k = 0; k < 3; ++k)
+            d += pow(row.pose[k] - wp[2].pose[k], 2);
+        if (sqrt(d) < 1e-6) {
+            assert_true(fabs(row.t - 3.0) <= 1e-3);
+            hit = 1;
+        }
+    }
+    assert_true(hit);
+    assert_true(fabs(plan_duration(p) - 4.5) <= 1e-3);
+    free_plan(p);
+    /* Too soon for the slides: refused, naming the waypoint and the earliest time. */
+    wp[2].t = 0.1;
+    assert_null(make_plan(NULL, wp, 4, NULL, &r));
+    assert_int_equal(r.status, PLAN_TIME);
+    assert_int_equal(r.waypoint, 2);
+    assert_true(r.t_needed > 0.1);
+}
+
+/* A plan the validator refuses is not returned: with no retry allowed, a path that needs one is
+ * refused with the row and the controller's REJECT. */
+static void test_never_returns_refused(void **state)
+{
+    (void)state;
+    plan_waypoint wp[17];
+    for (int k = 0; k < 17; ++k)
+        wp[k] = waypoint(0.05 * sin(2 * PI * k / 16), 0.05 * sin(4 * PI * k / 16), 1.0, 0, 0, 0);
+    plan_options o;
+    plan_options_default(&o);
+    plan_result r;
+    plan *p = make_plan(NULL, wp, 17, &o, &r);
+    assert_non_null(p);
+    const int needed = plan_retries(p);
+    free_plan(p);
+    if (needed == 0)
+        skip(); /* nothing to show: the first plan passed */
+    o.retries = 0;
+    assert_null(make_plan(NULL, wp, 17, &o, &r));
+    assert_int_equal(r.status, PLAN_REFUSED);
+    assert_true(r.row >= 0);
+    assert_int_not_equal(r.reject[2], 0);
+}
+
+static void check_refusal(const plan_waypoint *wp, int n, plan_status status, int waypoint, int between,
+                          const char *words)
+{
+    plan_result r;
+    assert_null(make_plan(NULL, wp, n, NULL, &r));
+    char why[512];
+    plan_explain(&r, wp, why, sizeof why);
+    printf("# refused: %s\n", why);
+    assert_int_equal(r.status, status);
+    assert_int_equal(r.waypoint, waypoint);
+    if (status == PLAN_WORKSPACE)
+        assert_int_equal(r.between, between);
+    assert_non_null(strstr(why, words));
+}
+
+static void test_refusals_name_the_waypoint(void **state)
+{
+    (void)state;
+    /* Above the angle stops at the centre (L sin(alpha_max) = 1.62 m). */
+    plan_waypoint high[3] = {waypoint(0, 0, 1.0, 0, 0, 0), waypoint(0, 0, 1.2, 0, 0, 0), waypoint(0, 0, 1.7, 0, 0, 0)};
+    high[2].line = 9;
+    check_refusal(high, 3, PLAN_WORKSPACE, 2, 0, "waypoint 3 (line 9)");
+    /* Both ends reachable at z = 0.32 m, x = +-0.15 m, the middle of the way is not: off the axis, low
+     * scissors reach their lower angle stop (tse-kin ik: (0.1, 0, 0.32) is 'alpha'). */
+    const plan_waypoint low[2] = {waypoint(0.15, 0, 0.32, 0, 0, 0), waypoint(0, 0, 0.32, 0, 0, 0)};
+    check_refusal(low, 2, PLAN_WORKSPACE, 0, 1, "angle stop");
+    /* A waypoint that repeats the one before. */
+    const plan_waypoint twice[3] = {waypoint(0, 0, 1.0, 0, 0, 0), waypoint(0, 0, 1.1, 0, 0, 0), waypoint(0, 0, 1.1, 0, 0, 0)};
+    check_refusal(twice, 3, PLAN_BAD_INPUT, 2, 0, "waypoint 3");
+    /* One waypoint is no path. */
+    const plan_waypoint one[1] = {waypoint(0, 0, 1.0, 0, 0, 0)};
+    check_refusal(one, 1, PLAN_BAD_INPUT, -1, 0, "at least 2");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_random_paths),
+        cmocka_unit_test(test_blend_cuts_corners),
+        cmocka_unit_test(test_times_kept),
+        cmocka_unit_test(test_never_returns_refused),
+        cmocka_unit_test(test_refusals_name_the_waypoint),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
