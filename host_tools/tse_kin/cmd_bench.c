@@ -14,6 +14,12 @@ enum { BENCH_REPEATS = 31 };
 
 const char cmd_bench_help[] =
     "usage: tse-kin bench [--params FILE] [--n N]\n"
+    "       tse-kin bench plan [--params FILE]\n"
+    "\n"
+    "bench plan: plans a path of 1,000 waypoints (the planner of tse-kin plan) and validates the\n"
+    "result as tsectl checks a file before sending it; prints both times (medians of 5 rounds), their\n"
+    "ratio and bench,plan_ms / validate_ms / plan_over_validate / plan_rows / plan_retries lines.\n"
+    "Otherwise:\n"
     "\n"
     "Times the library, double then float, on N poses (default 2000) of a smooth path through the\n"
     "workspace: pose k at t = 0.002 k, X = 0.15 sin t, Y = 0.12 sin 1.7t, Z = 1 + 0.3 sin 0.5t,\n"
@@ -70,6 +76,8 @@ static void print_result(const char *nm, const kin_bench_result *r)
 
 int cmd_bench(const kin_run *run)
 {
+    if (run->opt->n_args == 1)
+        return cmd_bench_plan(run);
     /* Both designs first: a set that only float rejects must fail before anything is timed. */
     const kin_ops *const all[2] = {&kin_ops_double, &kin_ops_float};
     kin_ctx *ctx[2] = {NULL, NULL};

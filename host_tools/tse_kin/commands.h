@@ -37,6 +37,7 @@ int cmd_profile(const kin_run *run);
 int cmd_margins(const kin_run *run);
 int cmd_plan(const kin_run *run);
 int cmd_check(const kin_run *run);
+int cmd_bench_plan(const kin_run *run); /* bench plan */
 /* workspace --points */
 int cmd_workspace_points(const kin_run *run);
 /* The '#' lines of both workspace forms: the grid, the orientation and how the volume is summed. */
@@ -52,6 +53,7 @@ void kin_workspace_comments(const kin_run *run);
  * calls them before it reads a parameter file. */
 int cmd_sweep_check(const kin_options *o, char *err, size_t errlen);
 int cmd_profile_check(const kin_options *o, char *err, size_t errlen);
+int cmd_bench_check(const kin_options *o, char *err, size_t errlen);
 
 extern const char cmd_ik_help[];
 extern const char cmd_fk_help[];

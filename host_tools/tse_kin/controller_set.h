@@ -11,7 +11,8 @@
  * reason on stderr. */
 int kin_controller_set(const kin_run *run, fw_param_set *s);
 
-/* The check of plan's and check's command line: exactly one FILE. */
+/* The checks of plan's and check's command line (exactly one FILE) and bench's (nothing, or
+ * 'plan' without --n). */
 int cmd_one_file_check(const kin_options *o, char *err, size_t errlen);
 
 #endif
