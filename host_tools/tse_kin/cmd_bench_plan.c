@@ -29,7 +29,7 @@ static void bench_waypoints(plan_waypoint *wp, int n)
         for (int j = 0; j < 6; ++j)
             wp[k].pose[j] = pose[j];
         wp[k].t = wp[k].v = NAN;
-        wp[k].line = 0;
+        wp[k].line = wp[k].number = 0;
     }
 }
 

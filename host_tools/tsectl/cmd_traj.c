@@ -22,6 +22,7 @@
 #include "reject_text.h"
 #include "telemetry.h"
 #include "traj_check.h"
+#include "traj_send.h"
 
 int check_trajectory(int argc, char **argv, int *done)
 {
@@ -282,6 +283,55 @@ static int stream(tlink *l, const char *path, const traj_row *rows, int n, int s
     return rc;
 }
 
+int traj_prepare(tlink *l, bool need_ready, traj_session *s)
+{
+    memset(s, 0, sizeof *s);
+    s->seq = ctl_status_needed(l, &s->st);
+    const proto_message *st = &s->st;
+    if (s->seq < 0)
+        return EXIT_TIMEOUT;
+    if (need_ready && (st->v[0] != FW_STATE_IDLE || !(st->v[2] & 1))) {
+        ctl_error("not started: a trajectory starts at rest from a homed, enabled controller, and node %u is %s%s "
+                  "(%s)",
+                  l->node, proto_enum_name(proto_state_names, st->v[0]), st->v[2] & 1 ? "" : " and not homed",
+                  st->v[0] == FW_STATE_FAULT || st->v[0] == FW_STATE_ESTOP ? "clear, enable and home first"
+                  : st->v[0] == FW_STATE_DISABLED                          ? "enable and home first"
+                  : !(st->v[2] & 1)                                        ? "home first"
+                                                                           : "wait for the running motion to end");
+        return EXIT_REJECTED;
+    }
+    const int rc = ctl_params_read(l, &s->set);
+    if (rc != EXIT_OK)
+        return rc; /* reported */
+    s->have_start = start_point(l, &s->tel) == 0;
+    return EXIT_OK;
+}
+
+int traj_send(tlink *l, const traj_session *s, const char *path, const traj_row *rows, int n)
+{
+    traj_check_result chk;
+    if (!s->have_start) {
+        /* The controller still validates every row, and a refusal still stops the robot. */
+        ctl_error("warning: no telemetry from node %u (telemetry_ms is 0?), so the file cannot be checked "
+                  "from where the robot is before sending; the controller checks each row as it comes",
+                  l->node);
+        return stream(l, path, rows, n, s->seq, (int)s->st.v[4]);
+    }
+    const int c = traj_check(&s->set, s->tel.pose, s->tel.slides, rows, n, &chk);
+    if (c < 0) {
+        ctl_error("node %u's parameters give no valid geometry (a firmware mismatch?)", l->node);
+        return EXIT_REJECTED;
+    }
+    if (c > 0) {
+        row_error(path, &rows[chk.row], chk.row, &chk.why, "would be refused; nothing was sent");
+        return EXIT_REJECTED;
+    }
+    printf("%d rows checked against node %u's limits from where it is: slide speed up to %.0f%% of the "
+           "%.4g m/s in effect (%s), acceleration up to %.0f%% of slide_amax\n",
+           n, l->node, chk.v_peak * 100.0, chk.v_limit, proto_slide_limits[chk.v_by].name, chk.a_peak * 100.0);
+    return stream(l, path, rows, n, s->seq, (int)s->st.v[4]);
+}
+
 int run_trajectory(tlink *l, int argc, char **argv)
 {
     (void)argc;
@@ -293,47 +343,10 @@ int run_trajectory(tlink *l, int argc, char **argv)
         ctl_error("%s", err);
         return EXIT_USAGE;
     }
-    int rc = EXIT_OK;
-    proto_message st;
-    const int seq = ctl_status_needed(l, &st);
-    fw_param_set set;
-    telemetry tel;
-    traj_check_result chk;
-    if (seq < 0) {
-        rc = EXIT_TIMEOUT;
-    } else if (st.v[0] != FW_STATE_IDLE || !(st.v[2] & 1)) {
-        ctl_error("not started: a trajectory starts at rest from a homed, enabled controller, and node %u is %s%s "
-                  "(%s)",
-                  l->node, proto_enum_name(proto_state_names, st.v[0]), st.v[2] & 1 ? "" : " and not homed",
-                  st.v[0] == FW_STATE_FAULT || st.v[0] == FW_STATE_ESTOP ? "clear, enable and home first"
-                  : st.v[0] == FW_STATE_DISABLED                         ? "enable and home first"
-                  : !(st.v[2] & 1)                                       ? "home first"
-                                                                         : "wait for the running motion to end");
-        rc = EXIT_REJECTED;
-    } else if ((rc = ctl_params_read(l, &set)) != EXIT_OK) {
-        /* reported */
-    } else if (start_point(l, &tel) != 0) {
-        /* The controller still validates every row, and a refusal still stops the robot. */
-        ctl_error("warning: no telemetry from node %u (telemetry_ms is 0?), so the file cannot be checked "
-                  "from where the robot is before sending; the controller checks each row as it comes",
-                  l->node);
-        rc = stream(l, path, rows, n, seq, (int)st.v[4]);
-    } else {
-        const int c = traj_check(&set, tel.pose, tel.slides, rows, n, &chk);
-        if (c < 0) {
-            ctl_error("node %u's parameters give no valid geometry (a firmware mismatch?)", l->node);
-            rc = EXIT_REJECTED;
-        } else if (c > 0) {
-            row_error(path, &rows[chk.row], chk.row, &chk.why, "would be refused; nothing was sent");
-            rc = EXIT_REJECTED;
-        } else {
-            printf("%d rows checked against node %u's limits from where it is: slide speed up to %.0f%% of the "
-                   "%.4g m/s in effect (%s), acceleration up to %.0f%% of slide_amax\n",
-                   n, l->node, chk.v_peak * 100.0, chk.v_limit, proto_slide_limits[chk.v_by].name,
-                   chk.a_peak * 100.0);
-            rc = stream(l, path, rows, n, seq, (int)st.v[4]);
-        }
-    }
+    traj_session s;
+    int rc = traj_prepare(l, true, &s);
+    if (rc == EXIT_OK)
+        rc = traj_send(l, &s, path, rows, n);
     free(rows);
     return rc;
 }

@@ -45,4 +45,7 @@ int run_params(tlink *l, int argc, char **argv);
 int check_trajectory(int argc, char **argv, int *done);
 int run_trajectory(tlink *l, int argc, char **argv);
 
+int check_path(int argc, char **argv, int *done);
+int run_path(tlink *l, int argc, char **argv);
+
 #endif

@@ -53,6 +53,20 @@ static const char *const traj_help =
     "the refusal of the late row says by how many ms; an e-stop), tsectl names which and the row,\n"
     "waits until the robot is at rest and exits 3.";
 
+static const char *const path_help =
+    "Plans a path through the waypoints from where the plate is, against the controller's own\n"
+    "parameters (read first), as fast as its slides allow, and streams it as 'trajectory' does:\n"
+    "checked whole by the controller's validator first, STOP on a refusal or Ctrl-C.  WAYPOINTS.csv\n"
+    "is rows x,y,z,roll,pitch,yaw (metres, radians; '#' lines and blank lines skipped); a header may\n"
+    "name the columns in any order and add t (the time a waypoint is passed, seconds from the start;\n"
+    "empty where free) and v (the plate's speed from there on at most, m/s).  A bad row exits 2\n"
+    "naming FILE:LINE.  The path goes from the plate's pose to the first waypoint (unless it is\n"
+    "there), then through every waypoint on a smooth curve, or with --blend M along straight pieces\n"
+    "whose corners it cuts by at most M metres; rows are --period apart (default 0.02 s).  A\n"
+    "waypoint outside the workspace, or a path leaving it between two, exits 3 naming it, and\n"
+    "nothing is sent.  --dry-run prints the plan's duration and how near each limit it runs, then\n"
+    "its rows (a file 'tsectl trajectory' takes), and sends nothing (tse-kin plan plans offline).";
+
 static const char *const params_help =
     "list              the parameters with their defaults, SI units, ranges and meaning (no bus)\n"
     "get NAME          one value, in SI units\n"
@@ -93,6 +107,7 @@ const tsectl_command tsectl_commands[] = {
      check_watch, run_watch, 1},
     {"params", "params list | get NAME | set NAME VALUE | dump | save", params_help, check_params, run_params, 1},
     {"trajectory", "trajectory FILE", traj_help, check_trajectory, run_trajectory, 1},
+    {"path", "path WAYPOINTS.csv [--blend M] [--period S] [--dry-run]", path_help, check_path, run_path, 1},
     {"heartbeat", "heartbeat", "Send the host heartbeat every 100 ms until interrupted (the controller's watchdog\n"
                                 "stops the robot after watchdog_ms of silence while the drives are on).",
      check_none, run_heartbeat, 1},

@@ -26,10 +26,13 @@ static const char *kin_words(tse_status s)
 
 static const char *where(const plan_waypoint *wp, int i, char *buf, size_t cap)
 {
-    if (wp[i].line > 0)
-        snprintf(buf, cap, "waypoint %d (line %d)", i + 1, wp[i].line);
+    const int number = wp[i].number > 0 ? wp[i].number : i + 1;
+    if (wp[i].number < 0)
+        snprintf(buf, cap, "the plate's pose (where the path starts)");
+    else if (wp[i].line > 0)
+        snprintf(buf, cap, "waypoint %d (line %d)", number, wp[i].line);
     else
-        snprintf(buf, cap, "waypoint %d", i + 1);
+        snprintf(buf, cap, "waypoint %d", number);
     return buf;
 }
 

@@ -3,6 +3,7 @@
  * from there, one every period, and one at the time each waypoint is passed (the controller runs straight between rows, so a row there keeps its path through the
  * waypoint); a regular row closer than the wire's least dt to a waypoint's gives way to it, and so
  * does a waypoint's to the next waypoint's.  Times in whole microseconds, as the wire carries them. */
+#include <math.h>
 #include <string.h>
 
 #include "plan_internal.h"
@@ -76,4 +77,13 @@ int plan_retries(const plan *p)
 void plan_start_slides(const plan *p, double q[6])
 {
     memcpy(q, p->q0, sizeof p->q0);
+}
+
+int plan_row_waypoint(const plan *p, double t)
+{
+    const int64_t at = llround(t * 1e6) - PLAN_HOLD_US;
+    int w = 0;
+    while (w + 1 < p->n && p->tw_us[w + 1] <= at)
+        ++w;
+    return w;
 }

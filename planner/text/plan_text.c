@@ -13,6 +13,7 @@ void plan_waypoints_from_rows(const waypoint_row *rows, int n, plan_waypoint *wp
         wp[i].t = rows[i].t;
         wp[i].v = rows[i].v;
         wp[i].line = rows[i].line;
+        wp[i].number = i + 1;
     }
 }
 

@@ -66,4 +66,20 @@ check "no such CAN interface exits 1" test $rc -eq 1
 check "the interface is named" grep -q nosuchcan0 "$tmp/e"
 "$T" params list >"$tmp/e"; check "params list needs no bus" grep -q "steps_per_m" "$tmp/e"
 check "params list shows SI units" grep -Eq "^slide_vmax +0.15 +m/s" "$tmp/e"
+# path (issue 25): the waypoint file is read before the bus, as a trajectory file is.
+"$T" help path >"$tmp/e" 2>&1; rc=$?
+check "path help needs no bus (exit 0)" test $rc -eq 0
+check "path help says what a waypoint file is and what --dry-run does" grep -q -- "--dry-run prints" "$tmp/e"
+printf 'x,y,z,roll,pitch,yaw\n0,0,1,0,0,0\n0,0,abc,0,0,0\n' >"$tmp/wp.csv"
+"$T" --iface nosuchcan0 --node 1 path "$tmp/wp.csv" >/dev/null 2>"$tmp/e"; rc=$?
+check "a bad waypoint row exits 2 before the bus" test $rc -eq 2
+check "the bad waypoint's line and column are named" grep -q "wp.csv:3: column 3 (z)" "$tmp/e"
+printf '0,0,1,0,0,0\n0,0,1.1,0,0,0\n' >"$tmp/wp.csv"
+"$T" --iface nosuchcan0 --node 1 path "$tmp/wp.csv" --blend 2 >/dev/null 2>"$tmp/e"; rc=$?
+check "path --blend 2 exits 2 naming the range" test $rc -eq 2
+check "the blend's range is said" grep -q "0 to 1 m" "$tmp/e"
+"$T" --iface nosuchcan0 --node 1 path "$tmp/wp.csv" --frob >/dev/null 2>"$tmp/e"; rc=$?
+check "path with an unknown option exits 2 naming it" grep -q -- "--frob" "$tmp/e"
+"$T" --iface nosuchcan0 --node 1 path "$tmp/wp.csv" --dry-run >/dev/null 2>"$tmp/e"; rc=$?
+check "a good waypoint file reaches the bus (exit 1 here)" test $rc -eq 1
 check_done

@@ -50,7 +50,7 @@ void free_plan(plan *p)
 
 plan_waypoint waypoint(double x, double y, double z, double roll, double pitch, double yaw)
 {
-    plan_waypoint w = {{x, y, z, roll, pitch, yaw}, NAN, NAN, 0};
+    plan_waypoint w = {{x, y, z, roll, pitch, yaw}, NAN, NAN, 0, 0};
     return w;
 }
 

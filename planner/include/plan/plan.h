@@ -61,6 +61,8 @@ typedef struct {
     double t;       /* the time the plate passes it [s]; NAN: free (the first one's is 0) */
     double v;       /* the plate's speed from here to the next waypoint at most [m/s]; NAN: none */
     int line;       /* where it came from (for messages; 0: none) */
+    int number;     /* what messages call it: waypoint `number`; 0: its place in the array (from 1);
+                     * -1: the plate's pose where the path starts (not the user's) */
 } plan_waypoint;
 
 typedef struct {
@@ -132,6 +134,8 @@ double plan_duration(const plan *p); /* [s]: the last row's time */
 long plan_row_count(const plan *p);
 /* The times the validator refused a row and the stretch around it was slowed. */
 int plan_retries(const plan *p);
+/* The last waypoint passed at row time t [s] (0-based): what a message about a row names. */
+int plan_row_waypoint(const plan *p, double t);
 /* The slides at the first waypoint (where the validator starts). */
 void plan_start_slides(const plan *p, double q[6]);
 
