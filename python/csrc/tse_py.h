@@ -2,7 +2,8 @@
  *
  * Promise: every entry point works on the caller's arrays (C order, doubles in, doubles and ints
  * out), keeps no state between calls and allocates nothing (tse_py_ik and tse_py_fk may start
- * threads for a large batch, and have joined them when they return).  A design is passed as
+ * threads for a large batch, and have joined them when they return; tse_py_plan takes the
+ * planner's memory for the call and gives it back).  A design is passed as
  * v[TSE_PY_NPARAMS], the parameters in the order of tse_param_id (v[0] = L, v[1] = k1, ...,
  * v[10] = nu_min) in SI units and radians; each batch call validates it with the build's own
  * tse_geometry_init (after rounding to that build's precision, as tse-kin does) and returns the
@@ -49,6 +50,19 @@ TSE_PY_API int tse_py_params_load(const char *path, double v[TSE_PY_NPARAMS], ch
 TSE_PY_API int tse_py_traj_check(const int *params, int n_params, const double pose0[6], const double q0[6], long n,
                                  const unsigned *dt_us, const double *poses, long *row, int reject[7],
                                  double *v_peak, double *a_peak);
+
+/* tse-kin plan's planner (planner/): waypoints poses[n][6] (m, rad), each with a time t[n] and a
+ * plate speed cap v[n] (NaN where free; t and v may be NULL), under the controller's parameter set
+ * params[n_params] (raw, as for tse_py_traj_check), rows `period` s apart, corners cut by at most
+ * `blend` m (0: a spline through every waypoint).  Returns the number of rows of the plan, and when
+ * it is at most cap fills rows[][7] (t, x, y, z, roll, pitch, yaw); -1 with the reason in err (the
+ * planner's words: the waypoint, counted from 1, and why); -2 when n_params is not this library's
+ * parameter count.  stats: duration [s], the peak speed and acceleration over their limits, the
+ * limits [m/s, m/s^2], the rows outside the first and last 5 % of the time, of those the rows with
+ * some slide at 90 % or more of a limit, and the validator's refusals on the way. */
+TSE_PY_API long tse_py_plan(const int *params, int n_params, long n, const double *poses, const double *t,
+                            const double *v, double period, double blend, long cap, double *rows, double stats[8],
+                            char *err, size_t errlen);
 
 #if defined(TSE_REAL_FLOAT) && TSE_REAL_FLOAT
 #define TSE_PY(name) name##_f

@@ -918,6 +918,44 @@ class Controller:
                 self._stop_at_rest()
                 raise
 
+    def path(self, waypoints, t=None, v=None, period=0.02, blend=0.0, progress=None):
+        """Plans a path through waypoints ((n, 6): x, y, z, roll, pitch, yaw) from where the plate is,
+        against the controller's own parameters (read first), with tse.plan (tsectl path's planner;
+        t, v, period and blend as tse.plan.plan takes them), then streams it with trajectory().
+        The path starts at the plate's pose: the first waypoint takes its place when it is within
+        10 um (and 10 urad) of it, otherwise the path goes to it first.  Returns (Plan, Streamed);
+        a path the planner refuses raises tse.plan.PlanError and nothing is sent.  Needs numpy."""
+        from . import plan as _plan
+        np = _plan.np
+        wp = np.asarray(waypoints, dtype=float)
+        if wp.ndim != 2 or wp.shape[1] != 6 or len(wp) < 1:
+            raise ValueError(f"waypoints must be an (n, 6) array of x, y, z, roll, pitch, yaw; got shape {wp.shape}")
+        n = len(wp)
+        tt = None if t is None else np.array(np.broadcast_to(np.asarray(t, dtype=float), (n,)))
+        vv = None if v is None else np.array(np.broadcast_to(np.asarray(v, dtype=float), (n,)))
+        params = [self._param_exchange("PARAM_GET", param=pid) for pid in range(len(_P.PARAMS))]
+        with contextlib.closing(self.watch(timeout=1.0)) as w:
+            tel = next((x for x in w if x.pose is not None), None)
+        if tel is None:
+            raise TseError(f"no telemetry from node {self.node} (telemetry_ms is 0?): a path is planned from where "
+                           "the plate is")
+        here = np.asarray(tel.pose, dtype=float)
+        d = np.abs(here - wp[0])
+        d[3:] = np.abs(np.remainder(d[3:] + math.pi, 2 * math.pi) - math.pi)
+        if d.max() <= 10e-6:
+            wp = wp.copy()
+            wp[0] = here
+            if tt is not None:
+                tt[0] = math.nan
+        else:
+            wp = np.vstack([here, wp])
+            if tt is not None:
+                tt = np.concatenate([[math.nan], np.where(tt[:1] == 0.0, math.nan, tt[:1]), tt[1:]])
+            if vv is not None:
+                vv = np.concatenate([[math.nan], vv])
+        p = _plan.plan(wp, tt, vv, params, period, blend)
+        return p, self.trajectory(p.rows.tolist(), progress)
+
     def _check_path(self, plan, rows):
         """tsectl's check of the whole path before sending (tse_py_traj_check, the controller's
         validator), from the controller's parameters, pose and slides; Rejected names the row."""
