@@ -251,7 +251,8 @@ plan *plan_make(void *mem, size_t bytes, const fw_param_set *s, const plan_waypo
     p->set = *s;
     const double stride = (double)FW_ACC_STRIDE / (double)lim.segment_hz;
     p->vlim = (double)lim.slide_vmax * o->v_margin;
-    p->alim = (double)lim.slide_amax * o->a_margin * fmin(1.0, stride / o->period);
+    p->row_f = fmin(1.0, stride / o->period);
+    p->alim = (double)lim.slide_amax * o->a_margin * p->row_f;
     p->period_us = llround(o->period * 1e6);
     p->path.r_top = g.r_top;
     p->path.ws = (double *)(base + l.ws);

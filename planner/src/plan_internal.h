@@ -59,6 +59,7 @@ struct plan {
     fw_limits lim;
     fw_param_set set;
     double vlim, alim;     /* the limits planned for (margins, and the rows' acceleration rule) */
+    double row_f;          /* min(1, the validator's acceleration stride / period) */
     double q0[6];          /* slides at the first waypoint */
     plan_path path;
     plan_grid grid;

@@ -12,7 +12,14 @@
 #include "plan_internal.h"
 
 /* Bounds on u at grid point i with x, under the limits there.  Returns false when no u is
- * admissible (x beyond what the accelerations allow with the slides' curvature). */
+ * admissible (x beyond what the accelerations allow with the slides' curvature).
+ *
+ * Rows further apart than the validator's stride S show a slide's acceleration unevenly: the
+ * change of the plate's own velocity comes at the rows, where the stride sees a row's change whole
+ * (P / S times the acceleration), while the part of q'' that comes from the Jacobian's change
+ * (q_sj x) bends each straight row evenly and is seen as it is.  So with f = min(1, S / P) the
+ * limit on f (P / S)(q_s u + (q_ss - q_sj) x) + q_sj x is f A on q_s u + (q_ss - q_sj + f q_sj) x
+ * (p->alim holds f A; at P <= S it is q'' itself). */
 static bool u_bounds(const plan *p, long i, double x, double *lo, double *hi)
 {
     const plan_grid *gr = &p->grid;
@@ -20,7 +27,7 @@ static bool u_bounds(const plan *p, long i, double x, double *lo, double *hi)
     const double A = p->alim * k * k;
     double l = -INFINITY, u = INFINITY;
     for (int j = 0; j < 6; ++j) {
-        const double a = gr->qs[i][j], b = gr->qss[i][j] * x;
+        const double a = gr->qs[i][j], b = (gr->qss[i][j] - (1.0 - p->row_f) * gr->qsj[i][j]) * x;
         if (fabs(a) < 1e-9) {
             if (fabs(b) > A)
                 return false;

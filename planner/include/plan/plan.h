@@ -14,8 +14,9 @@
  * slide_amax), as its trajectory validator measures them on the rows (fw/traj.h): rows period
  * apart and straight between them, so a row may change a slide's speed by at most
  * slide_amax x the validator's acceleration stride (10 ms): rows more than 10 ms apart plan at
- * slide_amax x 10 ms / period.  Rows come every `period` from the start, and one more at the time
- * each waypoint is passed, so the controller's path goes through every waypoint too.
+ * slide_amax x 10 ms / period.  There is a row at the time each waypoint is passed, so the
+ * controller's path goes through every waypoint too, and between two waypoints' rows the fewest
+ * rows evenly spaced at most `period` apart.
  *
  * Every point of the grid is solved (tse_ik, the controller's own checks): a path that leaves the
  * workspace (stroke, angle stops, either singularity margin) is refused naming the waypoint, or the
@@ -119,9 +120,8 @@ typedef struct {
 } plan_row;
 
 typedef struct {
-    long k;        /* next regular row (k+1) period */
-    int w;         /* next waypoint whose row is due */
-    int64_t last;  /* the latest row's time [us] from the motion's start */
+    int a, b;      /* the stretch between the rows of waypoints a and b */
+    long j, m;     /* the next of its m rows */
     bool held;     /* the first row (the hold) is out */
     bool done;
 } plan_cursor;
