@@ -859,6 +859,15 @@ rc, out, err = run(["check", write("badrow.traj", "0.02,0,0,1,0,0,0\n0.01,0,0,1,
 check("check of a row out of time order exits 1 naming its line", rc == 1 and "badrow.traj:2:" in err, f"rc {rc} {err!r}")
 rc, out, err = run(["check", "--params", write("bad.params", "slide_amax = x\n"), traj])
 check("check with a bad parameter file exits 1 naming its line", rc == 1 and "bad.params:1:" in err, f"rc {rc} {err!r}")
+# The examples README plans: each accepted first time by check, most of its rows near a limit.
+EXAMPLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "planner", "examples")
+for name, extra in (("circle", []), ("eight", []), ("helix", []), ("square", ["--blend", "0.002"])):
+    rc, out, err = run(["plan"] + extra + [os.path.join(EXAMPLES, f"{name}.csv")])
+    near = re.search(r"rows with some slide at >= 90% of a limit: ([0-9.]+)%", out)
+    check(f"plan of planner/examples/{name}.csv: rows with a slide near a limit >= 60 %",
+          rc == 0 and near and float(near.group(1)) >= 60, f"rc {rc} {err!r} {out[:300]!r}")
+    rc, out, err = run(["check", write(f"{name}.traj", out)])
+    check(f"check accepts the plan of {name}.csv", rc == 0, f"rc {rc} {err!r}")
 
 print(f"{passes} passed, {len(failures)} failed")
 sys.exit(1 if failures else 0)
