@@ -157,14 +157,6 @@ void csv_put_nans(FILE *f, int n)
         fputs(",nan", f);
 }
 
-int csv_is_blank_or_comment(const char *s, size_t len)
-{
-    size_t i = 0;
-    while (i < len && (s[i] == ' ' || s[i] == '\t' || s[i] == '\r'))
-        ++i;
-    return i == len || s[i] == '#';
-}
-
 const char *csv_shown(csv_span f, char *buf, size_t cap)
 {
     size_t n = 0;
@@ -179,4 +171,18 @@ const char *csv_shown(csv_span f, char *buf, size_t cap)
     }
     buf[n] = '\0';
     return buf;
+}
+
+int csv_starts_with_number(const char *line, size_t len)
+{
+    csv_span f[1];
+    csv_split(line, len, f, 1);
+    char tok[64];
+    if (f[0].len == 0 || f[0].len >= sizeof tok)
+        return f[0].len != 0;
+    memcpy(tok, f[0].text, f[0].len);
+    tok[f[0].len] = '\0';
+    char *end;
+    (void)strtod(tok, &end);
+    return end != tok;
 }

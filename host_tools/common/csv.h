@@ -45,9 +45,8 @@ int csv_split(const char *line, size_t len, csv_span *fields, int max);
  * ("t, X ,y,..." for {"t", "x", "y", ...}). */
 int csv_is_header(const char *line, size_t len, const char *const *names, int n);
 
-/* Whether a line is blank (spaces, tabs, a CR) or a comment (its first other character '#'):
- * what the CSV files' readers skip. */
-int csv_is_blank_or_comment(const char *s, size_t len);
+/* Whether the row's first field starts as a number does (what tells a row from a would-be header). */
+int csv_starts_with_number(const char *line, size_t len);
 
 /* A field as written, made safe to quote in a message: at most CSV_SHOWN_MAX bytes then "...",
  * control bytes as '?'.  Returns buf (cap at least CSV_SHOWN_MAX + 8). */

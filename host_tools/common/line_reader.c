@@ -2,7 +2,12 @@
 #define _POSIX_C_SOURCE 200809L /* getc_unlocked: one thread reads, no locking per byte */
 #include "line_reader.h"
 
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
 #include <string.h>
+
+#include "text.h"
 
 void line_reader_init(line_reader *r, FILE *f)
 {
@@ -51,4 +56,35 @@ int line_reader_next(line_reader *r, const char **line, size_t *len, int *overlo
     *line = r->buf;
     *len = n;
     return 1;
+}
+
+/* Blank (spaces, tabs, a CR) or a comment (its first other character '#'). */
+static int blank_or_comment(const char *s, size_t len)
+{
+    size_t i = 0;
+    while (i < len && (s[i] == ' ' || s[i] == '\t' || s[i] == '\r'))
+        ++i;
+    return i == len || s[i] == '#';
+}
+
+int line_reader_next_content(line_reader *r, const char *path, int *line, const char **s, size_t *len, char *err,
+                             size_t errlen)
+{
+    int got, overlong;
+    while ((got = line_reader_next(r, s, len, &overlong)) == 1) {
+        if (*line == INT_MAX) { /* a row's line must fit an int */
+            snprintf(err, errlen, "%s: more than %d lines", path, INT_MAX);
+            return -1;
+        }
+        ++*line;
+        if (overlong)
+            return text_line_error(err, errlen, path, *line, "line longer than %d bytes", LINE_READER_MAX);
+        if (memchr(*s, '\0', *len))
+            return text_line_error(err, errlen, path, *line, "NUL byte in the line (not a text file?)");
+        if (!blank_or_comment(*s, *len))
+            return 1;
+    }
+    if (got < 0)
+        snprintf(err, errlen, "%s: cannot read after line %d: %s", path, *line, strerror(errno));
+    return got;
 }

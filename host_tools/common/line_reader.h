@@ -31,6 +31,13 @@ void line_reader_init(line_reader *r, FILE *f);
  * 0 at the end of the stream; -1 on a read error. */
 int line_reader_next(line_reader *r, const char **line, size_t *len, int *overlong);
 
+/* The next line of a CSV file that holds something (lines blank but for spaces, tabs and a CR, and
+ * lines whose first other character is '#', skipped), its 1-based number in *line (counted from 0 before the first
+ * call): 1; 0 at the end; -1 with "PATH:LINE: why" (a line longer than LINE_READER_MAX, a NUL
+ * byte, more lines than an int counts) or "PATH: cannot read ..." in err. */
+int line_reader_next_content(line_reader *r, const char *path, int *line, const char **s, size_t *len, char *err,
+                             size_t errlen);
+
 /* For readers that take a whole text at once: UTF8_BOM_LEN when text[0..len) starts with a BOM,
  * else 0. */
 size_t utf8_bom_length(const char *text, size_t len);

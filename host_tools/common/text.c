@@ -3,6 +3,8 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -27,4 +29,15 @@ int text_number(const char *s, double *out)
         return -1;
     *out = x;
     return 0;
+}
+
+int text_line_error(char *err, size_t errlen, const char *path, int line, const char *fmt, ...)
+{
+    char what[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    snprintf(err, errlen, "%s:%d: %s", path, line, what);
+    return -1;
 }

@@ -10,4 +10,11 @@ char *text_trim(char *s);
  * "nan", "inf" and "1e999" (ERANGE, also an underflow) are refused.  Returns 0 with *out, or -1. */
 int text_number(const char *s, double *out);
 
+#include <stddef.h>
+
+/* Writes "PATH:LINE: " and the formatted message into err (what every file reader's refusal reads
+ * like).  Returns -1, so that a reader can `return text_line_error(...)`. */
+int text_line_error(char *err, size_t errlen, const char *path, int line, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+
 #endif

@@ -4,13 +4,13 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "csv.h"
 #include "line_reader.h"
+#include "text.h"
 
 enum { COLS = 7 };
 
@@ -36,31 +36,8 @@ typedef struct {
     size_t errlen;
 } ctx;
 
-__attribute__((format(printf, 3, 4))) static int fail_line(const ctx *c, int line, const char *fmt, ...)
-{
-    char what[256];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(what, sizeof what, fmt, ap);
-    va_end(ap);
-    snprintf(c->err, c->errlen, "%s:%d: %s", c->path, line, what);
-    return -1;
-}
-
-/* Whether the first field of the row is a number (what tells a row from a would-be header). */
-static int starts_with_number(const char *s, size_t len)
-{
-    csv_span f[1];
-    csv_split(s, len, f, 1);
-    char tok[64];
-    if (f[0].len == 0 || f[0].len >= sizeof tok)
-        return f[0].len != 0;
-    memcpy(tok, f[0].text, f[0].len);
-    tok[f[0].len] = '\0';
-    char *end;
-    (void)strtod(tok, &end);
-    return end != tok;
-}
+/* "PATH:LINE: what is wrong" in the reader's err; -1. */
+#define fail_line(c, line, ...) text_line_error((c)->err, (c)->errlen, (c)->path, line, __VA_ARGS__)
 
 /* Parses and checks one row's numbers (everything but the time).  0, or -1 with the message. */
 static int parse_row(const ctx *c, int line, const char *s, size_t len, traj_row *r)
@@ -155,28 +132,12 @@ static int read_rows(const ctx *c, FILE *f, traj_row **rows)
     int line = 0, got, seen_content = 0, rc = -1;
     const char *s;
     size_t len;
-    int overlong;
-    while ((got = line_reader_next(rd, &s, &len, &overlong)) == 1) {
-        if (line == INT_MAX) { /* a row's line must fit traj_row.line */
-            snprintf(c->err, c->errlen, "%s: more than %d lines", c->path, INT_MAX);
-            goto out;
-        }
-        ++line;
-        if (overlong) {
-            fail_line(c, line, "line longer than %d bytes", LINE_READER_MAX);
-            goto out;
-        }
-        if (memchr(s, '\0', len)) {
-            fail_line(c, line, "NUL byte in the line (not a text file?)");
-            goto out;
-        }
-        if (csv_is_blank_or_comment(s, len))
-            continue;
+    while ((got = line_reader_next_content(rd, c->path, &line, &s, &len, c->err, c->errlen)) == 1) {
         const int first = !seen_content;
         seen_content = 1;
         if (first && csv_is_header(s, len, names, COLS))
             continue;
-        if (first && !starts_with_number(s, len)) {
+        if (first && !csv_starts_with_number(s, len)) {
             char buf[CSV_SHOWN_MAX + 8];
             const csv_span whole = {s, len};
             fail_line(c, line, "neither the header " NAMES_TEXT " nor a row of 7 numbers: '%s'",
@@ -196,10 +157,8 @@ static int read_rows(const ctx *c, FILE *f, traj_row **rows)
             goto out;
         ++n;
     }
-    if (got < 0) {
-        snprintf(c->err, c->errlen, "%s: cannot read after line %d: %s", c->path, line, strerror(errno));
+    if (got < 0)
         goto out;
-    }
     if (n == 0) {
         snprintf(c->err, c->errlen, "%s: no rows (%s)", c->path,
                  line == 0 ? "the file is empty" : "only blank lines, comments or a header");

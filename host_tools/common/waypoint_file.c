@@ -4,7 +4,6 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,16 +25,8 @@ typedef struct {
     int what[NAMES];  /* what column k holds (an index into names) */
 } reader;
 
-__attribute__((format(printf, 3, 4))) static int fail(const reader *r, int line, const char *fmt, ...)
-{
-    char what[256];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(what, sizeof what, fmt, ap);
-    va_end(ap);
-    snprintf(r->err, r->errlen, "%s:%d: %s", r->path, line, what);
-    return -1;
-}
+/* "PATH:LINE: what is wrong" in the reader's err; -1. */
+#define fail(r, line, ...) text_line_error((r)->err, (r)->errlen, (r)->path, line, __VA_ARGS__)
 
 static int field_text(csv_span f, char *buf, size_t cap)
 {
@@ -71,18 +62,6 @@ static int read_header(reader *r, int line, const char *s, size_t len)
                         names[j]);
     r->cols = n;
     return 0;
-}
-
-static int starts_with_number(const char *s, size_t len)
-{
-    csv_span f[1];
-    csv_split(s, len, f, 1);
-    char tok[64];
-    if (field_text(f[0], tok, sizeof tok) != 0)
-        return f[0].len != 0;
-    char *end;
-    (void)strtod(tok, &end);
-    return end != tok;
 }
 
 /* One row; first: it is the first waypoint; prev_t, prev_line: the latest time given before it (the
@@ -147,23 +126,11 @@ static int read_all(reader *r, FILE *f, waypoint_row **rows)
     int last_line = 0;
     const char *s;
     size_t len;
-    int overlong;
     r->cols = COL_T;
     for (int k = 0; k < NAMES; ++k)
         r->what[k] = k;
-    while ((got = line_reader_next(rd, &s, &len, &overlong)) == 1) {
-        ++line;
-        if (overlong) {
-            fail(r, line, "line longer than %d bytes", LINE_READER_MAX);
-            goto out;
-        }
-        if (memchr(s, '\0', len)) {
-            fail(r, line, "NUL byte in the line (not a text file?)");
-            goto out;
-        }
-        if (csv_is_blank_or_comment(s, len))
-            continue;
-        if (!seen++ && !starts_with_number(s, len)) {
+    while ((got = line_reader_next_content(rd, r->path, &line, &s, &len, r->err, r->errlen)) == 1) {
+        if (!seen++ && !csv_starts_with_number(s, len)) {
             if (read_header(r, line, s, len) != 0)
                 goto out;
             continue;
@@ -189,10 +156,8 @@ static int read_all(reader *r, FILE *f, waypoint_row **rows)
         }
         ++n;
     }
-    if (got < 0) {
-        snprintf(r->err, r->errlen, "%s: cannot read after line %d: %s", r->path, line, strerror(errno));
+    if (got < 0)
         goto out;
-    }
     if (n < 2) {
         snprintf(r->err, r->errlen, "%s: %zu waypoint%s: a path needs at least 2", r->path, n, n == 1 ? "" : "s");
         goto out;

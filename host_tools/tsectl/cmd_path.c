@@ -1,6 +1,7 @@
 /* path WAYPOINTS.csv: a path planned through waypoints against the controller's own parameters
  * and from where it is (the planner of tse-kin plan), then streamed as `trajectory` streams a file
- * (checked whole first; STOP on a refusal or Ctrl-C).  --dry-run plans and prints, sending nothing. */
+ * (checked whole first; STOP on a refusal or Ctrl-C).  --dry-run plans and prints, sending nothing;
+ * --plot FILE.png draws the plan first (path_plot.h). */
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -8,12 +9,14 @@
 #include <string.h>
 
 #include "commands.h"
+#include "path_plot.h"
 #include "plan_text.h"
 #include "text.h"
 #include "traj_send.h"
 
 typedef struct {
     const char *path;
+    const char *png; /* --plot */
     bool dry_run;
     plan_options o;
 } path_args;
@@ -31,6 +34,10 @@ static int parse(int argc, char **argv, path_args *a)
         double *value = !strcmp(s, "--blend") ? &a->o.blend : !strcmp(s, "--period") ? &a->o.period : NULL;
         if (!strcmp(s, "--dry-run")) {
             a->dry_run = true;
+        } else if (!strcmp(s, "--plot")) {
+            if (i + 1 >= argc || !argv[i + 1][0])
+                return usage_error("path", "--plot needs a FILE.png", NULL);
+            a->png = argv[++i];
         } else if (value) {
             if (i + 1 >= argc || text_number(argv[i + 1], value) != 0)
                 return usage_error("path", i + 1 < argc ? "a number of metres (--blend) or seconds (--period) expected"
@@ -67,6 +74,10 @@ int check_path(int argc, char **argv, int *done)
         return EXIT_USAGE;
     }
     free(rows);
+    if (a.png && path_plot_available(err, sizeof err) != 0) {
+        ctl_error("%s", err);
+        return EXIT_USAGE;
+    }
     return EXIT_OK;
 }
 
@@ -121,6 +132,9 @@ int run_path(tlink *l, int argc, char **argv)
         if (plan_text_make(&s.set, first, count, &a.o, a.path, &m, err, sizeof err) != 0) {
             ctl_error("%s; nothing was sent", err);
             rc = EXIT_REJECTED;
+        } else if (a.png && path_plot(m.p, &s.set, a.png, err, sizeof err) != 0) {
+            ctl_error("%s; nothing was sent", err);
+            rc = EXIT_USAGE;
         } else if (a.dry_run) {
             plan_stats st;
             plan_measure(m.p, &st);

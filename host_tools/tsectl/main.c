@@ -65,7 +65,9 @@ static const char *const path_help =
     "whose corners it cuts by at most M metres; rows are --period apart (default 0.02 s).  A\n"
     "waypoint outside the workspace, or a path leaving it between two, exits 3 naming it, and\n"
     "nothing is sent.  --dry-run prints the plan's duration and how near each limit it runs, then\n"
-    "its rows (a file 'tsectl trajectory' takes), and sends nothing (tse-kin plan plans offline).";
+    "its rows (a file 'tsectl trajectory' takes), and sends nothing (tse-kin plan plans offline).\n"
+    "--plot FILE.png draws the plan before sending: the plate's path from above, its height, and\n"
+    "each slide's speed row by row against the limit (python3-matplotlib).";
 
 static const char *const params_help =
     "list              the parameters with their defaults, SI units, ranges and meaning (no bus)\n"
@@ -107,7 +109,8 @@ const tsectl_command tsectl_commands[] = {
      check_watch, run_watch, 1},
     {"params", "params list | get NAME | set NAME VALUE | dump | save", params_help, check_params, run_params, 1},
     {"trajectory", "trajectory FILE", traj_help, check_trajectory, run_trajectory, 1},
-    {"path", "path WAYPOINTS.csv [--blend M] [--period S] [--dry-run]", path_help, check_path, run_path, 1},
+    {"path", "path WAYPOINTS.csv [--blend M] [--period S] [--dry-run] [--plot FILE.png]", path_help, check_path,
+     run_path, 1},
     {"heartbeat", "heartbeat", "Send the host heartbeat every 100 ms until interrupted (the controller's watchdog\n"
                                 "stops the robot after watchdog_ms of silence while the drives are on).",
      check_none, run_heartbeat, 1},

@@ -21,15 +21,7 @@ static void workspace_fault(plan_result *r, const tse_ik_result *ik, int waypoin
 /* The waypoint whose stretch holds s (the last one at or before it). */
 static int stretch_of(const plan_path *path, double s)
 {
-    int lo = 0, hi = path->n - 1;
-    while (hi - lo > 1) {
-        const int mid = (lo + hi) / 2;
-        if (path->ws[mid] <= s)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return lo;
+    return (int)plan_interval(path->ws, path->n, s);
 }
 
 int plan_grid_solve(plan *p, plan_result *r)

@@ -155,17 +155,23 @@ int plan_path_build(plan_path *path, const plan_waypoint *wp, int n, double blen
     return 0;
 }
 
-static void spline_eval(const plan_path *path, double s, double p[6], double dp[6], double ddp[6])
+long plan_interval(const double *a, long n, double x)
 {
-    const double *ws = path->ws;
-    int lo = 0, hi = path->n - 1;
+    long lo = 0, hi = n - 1;
     while (hi - lo > 1) {
-        const int mid = (lo + hi) / 2;
-        if (ws[mid] <= s)
+        const long mid = (lo + hi) / 2;
+        if (a[mid] <= x)
             lo = mid;
         else
             hi = mid;
     }
+    return lo;
+}
+
+static void spline_eval(const plan_path *path, double s, double p[6], double dp[6], double ddp[6])
+{
+    const double *ws = path->ws;
+    const long lo = plan_interval(ws, path->n, s), hi = lo + 1;
     const double h = ws[hi] - ws[lo];
     const double A = (ws[hi] - s) / h, B = 1.0 - A;
     const double *y0 = path->val[lo], *y1 = path->val[hi], *m0 = path->m2[lo], *m1 = path->m2[hi];

@@ -28,6 +28,10 @@ typedef struct {
     int n_pieces;
 } plan_path;
 
+/* The interval of the sorted a[0..n) (n >= 2) that holds x: the last i <= n - 2 with a[i] <= x
+ * (0 when x is below a[0]). */
+long plan_interval(const double *a, long n, double x);
+
 /* Builds the path through wp[0..n) in the arrays already pointed to (n knots, 2n pieces).  Returns
  * 0, or -1 with r filled (a waypoint that repeats the one before). */
 int plan_path_build(plan_path *path, const plan_waypoint *wp, int n, double blend, plan_result *r);

@@ -159,18 +159,11 @@ int plan_time_law(plan *p, plan_result *r)
 void plan_pose_at(const plan *p, double t, double pose[6])
 {
     const plan_grid *gr = &p->grid;
-    long lo = 0, hi = gr->N;
     if (t >= gr->t[gr->N]) {
         plan_path_eval(&p->path, p->path.length, pose, NULL, NULL);
         return;
     }
-    while (hi - lo > 1) {
-        const long mid = (lo + hi) / 2;
-        if (gr->t[mid] <= t)
-            lo = mid;
-        else
-            hi = mid;
-    }
+    const long lo = plan_interval(gr->t, gr->N + 1, t);
     const double tau = fmax(t - gr->t[lo], 0.0);
     const double v = sqrt(gr->x[lo]), u = (gr->x[lo + 1] - gr->x[lo]) / (2.0 * gr->h);
     const double d = fmin(fmax(v * tau + 0.5 * u * tau * tau, 0.0), gr->h);

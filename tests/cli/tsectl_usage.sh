@@ -82,4 +82,10 @@ check "the blend's range is said" grep -q "0 to 1 m" "$tmp/e"
 check "path with an unknown option exits 2 naming it" grep -q -- "--frob" "$tmp/e"
 "$T" --iface nosuchcan0 --node 1 path "$tmp/wp.csv" --dry-run >/dev/null 2>"$tmp/e"; rc=$?
 check "a good waypoint file reaches the bus (exit 1 here)" test $rc -eq 1
+"$T" --iface nosuchcan0 --node 1 path "$tmp/wp.csv" --plot >/dev/null 2>"$tmp/e"; rc=$?
+check "path --plot without a file exits 2 naming it" grep -q -- "--plot needs a FILE.png" "$tmp/e"
+if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then
+  "$T" --iface nosuchcan0 --node 1 path "$tmp/wp.csv" --plot "$tmp/p.png" >/dev/null 2>"$tmp/e"; rc=$?
+  check "path --plot with matplotlib here reaches the bus (exit 1 here)" test $rc -eq 1
+fi
 check_done
