@@ -46,6 +46,10 @@ const char *plan_explain(const plan_result *r, const plan_waypoint *wp, char *bu
     case PLAN_BAD_INPUT:
         if (r->waypoint >= 0)
             snprintf(buf, cap, "%s: %s", where(wp, r->waypoint, a, sizeof a), r->why);
+        else if (r->period_min > 0.0)
+            snprintf(buf, cap, "rows closer than %.4g s apart: the controller's queue of %d rows would hold less path "
+                               "than a stop from the slides' speed limit needs (an underrun); use --period %.4g or more",
+                     r->period_min, FW_TRAJ_CAPACITY, r->period_min);
         else
             snprintf(buf, cap, "%s", r->why);
         break;

@@ -13,7 +13,8 @@ int plan_measure(const plan *p, plan_stats *st)
     st->a_limit = (double)p->lim.slide_amax;
     if (traj_checker_start(&c, &p->set, p->wp[0].pose, p->q0) != 0)
         return -1;
-    const double T = plan_duration(p);
+    /* The motion's time: from the row holding the start to the last. */
+    const double t0 = plan_hold(p), T = plan_duration(p) - t0;
     plan_cursor cur;
     plan_row row;
     int64_t prev = 0;
@@ -29,7 +30,7 @@ int plan_measure(const plan *p, plan_stats *st)
         c.t.chk.v_ratio = c.t.chk.a_ratio = 0; /* the next row's own */
         st->v_peak = fmax(st->v_peak, v);
         st->a_peak = fmax(st->a_peak, a);
-        if (row.t >= 0.05 * T && row.t <= 0.95 * T) {
+        if (row.t >= t0 + 0.05 * T && row.t <= t0 + 0.95 * T) {
             ++st->rows_mid;
             if (fmax(v, a) >= 0.9)
                 ++st->rows_near;

@@ -117,6 +117,17 @@ static double chord_length(const plan_waypoint *wp, int n, double r_top)
     return len;
 }
 
+double plan_row_spacing_min(const fw_param_set *s)
+{
+    tse_geometry g;
+    fw_limits lim;
+    if (fw_limits_from_params(s, FW_STEP_HZ, FW_SEGMENT_HZ, &g, &lim) != 0)
+        return PLAN_ROW_MIN_US * 1e-6;
+    const double need = (double)lim.slide_vmax / (PLAN_STOP_SHARE * (double)lim.slide_amax) +
+                         2.0 / (double)lim.segment_hz + PLAN_QUEUE_MARGIN_S;
+    return fmax(ceil(need / PLAN_QUEUED_ROWS * 1e6) * 1e-6, PLAN_ROW_MIN_US * 1e-6);
+}
+
 size_t plan_bytes(const fw_param_set *s, const plan_waypoint *wp, int n, const plan_options *o)
 {
     plan_result r;
@@ -142,10 +153,10 @@ static void slow_down(plan *p, const plan_result *r)
     long k = 0;
     for (plan_rows_begin(p, &c); plan_rows_next(p, &c, &row); ++k) {
         if (k == r->row) {
-            t_row = row.t - PLAN_HOLD_US * 1e-6;
+            t_row = row.t - (double)p->hold_us * 1e-6;
             break;
         }
-        t_prev = row.t - PLAN_HOLD_US * 1e-6;
+        t_prev = row.t - (double)p->hold_us * 1e-6;
     }
     const double stride = (double)FW_ACC_STRIDE / (double)p->lim.segment_hz;
     const double from = t_prev - 2.0 * stride - p->opt.period, to = t_row + stride;
@@ -173,7 +184,7 @@ static int keep_times(plan *p, plan_result *r)
         for (int w = 1; w < p->n; ++w) {
             if (isnan(p->wp[w].t))
                 continue;
-            const int64_t want = llround(p->wp[w].t * 1e6) - PLAN_HOLD_US;
+            const int64_t want = llround(p->wp[w].t * 1e6) - p->hold_us;
             double hi = 1.0, lo = 1.0;
             for (int i = from; i < w; ++i)
                 p->pace[i] = 1.0;
@@ -182,7 +193,7 @@ static int keep_times(plan *p, plan_result *r)
             if (p->tw_us[w] > want + PLAN_ROW_MIN_US / 2) {
                 r->status = PLAN_TIME;
                 r->waypoint = w;
-                r->t_needed = (double)(p->tw_us[w] + PLAN_HOLD_US) * 1e-6;
+                r->t_needed = (double)(p->tw_us[w] + p->hold_us) * 1e-6;
                 return -1;
             }
             /* Slower until it is late, then bisect between on time and late. */
@@ -209,7 +220,7 @@ static int keep_times(plan *p, plan_result *r)
         }
     }
     for (int w = 1; w < p->n; ++w) {
-        if (!isnan(p->wp[w].t) && llabs(p->tw_us[w] + PLAN_HOLD_US - llround(p->wp[w].t * 1e6)) > PLAN_ROW_MIN_US) {
+        if (!isnan(p->wp[w].t) && llabs(p->tw_us[w] + p->hold_us - llround(p->wp[w].t * 1e6)) > PLAN_ROW_MIN_US) {
             r->status = PLAN_TIME;
             r->waypoint = w;
             r->t_needed = NAN; /* each can be kept, not all together */
@@ -254,6 +265,14 @@ plan *plan_make(void *mem, size_t bytes, const fw_param_set *s, const plan_waypo
     p->row_f = fmin(1.0, stride / o->period);
     p->alim = (double)lim.slide_amax * o->a_margin * p->row_f;
     p->period_us = llround(o->period * 1e6);
+    p->hold_us = s->v[FP_TRAJ_LEAD] > PLAN_ROW_MIN_US ? s->v[FP_TRAJ_LEAD] : PLAN_ROW_MIN_US;
+    p->min_us = llround(plan_row_spacing_min(s) * 1e6);
+    if (p->period_us < p->min_us) {
+        r->status = PLAN_BAD_INPUT;
+        r->why = "the period is shorter than the controller's queue allows at its speed limit (plan_row_spacing_min)";
+        r->period_min = (double)p->min_us * 1e-6;
+        return NULL;
+    }
     p->path.r_top = g.r_top;
     p->path.ws = (double *)(base + l.ws);
     p->path.val = (double (*)[6])(base + l.val);

@@ -71,6 +71,8 @@ struct plan {
     double *pace;          /* [n] the share of the limits each stretch is held to, keeping the
                             * waypoints' times (1 where no time is given) */
     int64_t period_us;
+    int64_t hold_us;       /* the first row's time: the motion starts there */
+    int64_t min_us;        /* the rows' least spacing (plan_row_spacing_min) */
     long rows;
     int retries;
     traj_checker chk;

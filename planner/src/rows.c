@@ -1,5 +1,6 @@
-/* The rows of a plan: first a row holding the first waypoint PLAN_HOLD_US after the start (so that
- * a file of rows says where it starts: tse-kin check judges it from rest at its first row); then,
+/* The rows of a plan: first a row holding the first waypoint traj_lead after the start (plan.h says
+ * why; a file of rows also says so where it starts: tse-kin check judges it from rest at its first
+ * row); then,
  * from there, a row at the time each waypoint is passed (the controller runs straight between rows,
  * so a row there keeps its path through the waypoint), and between two of them the fewest rows
  * evenly spaced at most a period apart.  Even spacing keeps every row at least half a period long
@@ -9,21 +10,29 @@
  * whole number of rows: in between, its three samples fall at different places between rows, where
  * the straight rows cut inside the curve by up to a P'^2 / 8, and it sees up to 12 % more (rows
  * 7 ms apart against its 10 ms).  So there a stretch takes more rows (up to twice as many) until
- * their spacing is one the stride sees within half a per cent.  A waypoint passed
- * within the wire's least dt of the one before (or of the last) has no row of its own.  Times in
+ * their spacing is one the stride sees within half a per cent.  No two rows are closer than the
+ * controller's queue allows (plan.h, PLAN_STOP_SHARE): a waypoint passed sooner after the one before
+ * (or before the last) has no row of its own.  Times in
  * whole microseconds, as the wire carries them. */
 #include <math.h>
 #include <string.h>
 
 #include "plan_internal.h"
 
-/* The waypoint whose row ends the stretch from waypoint a's. */
+/* The waypoint whose row ends the stretch from waypoint a's: the first whose row is the queue's
+ * least spacing or more after a's (and before the last's), passing on to later ones while the span
+ * is over a period but under twice that spacing (its two rows would be closer than it). */
 static int stretch_end(const plan *p, int a)
 {
     const int final = p->n - 1;
+    const int64_t min = p->min_us, t0 = p->tw_us[a];
     int b = a + 1;
-    while (b < final && (p->tw_us[b] - p->tw_us[a] < PLAN_ROW_MIN_US || p->tw_us[final] - p->tw_us[b] < PLAN_ROW_MIN_US))
+    while (b < final) {
+        const int64_t span = p->tw_us[b] - t0;
+        if (span >= min && !(span > p->period_us && span < 2 * min) && p->tw_us[final] - p->tw_us[b] >= min)
+            break;
         ++b;
+    }
     return b;
 }
 
@@ -46,8 +55,11 @@ static void stretch_begin(const plan *p, plan_cursor *c, int a)
     c->a = a;
     c->b = stretch_end(p, a);
     const int64_t span = p->tw_us[c->b] - p->tw_us[a];
-    const int64_t by_period = (span + p->period_us - 1) / p->period_us, by_min = span / PLAN_ROW_MIN_US;
-    c->m = by_period < by_min ? by_period : by_min;
+    /* At most a period apart, evenly: with the stretch's span over a period at least twice the
+     * queue's least spacing, no row is closer than that either. */
+    const int64_t by_period = (span + p->period_us - 1) / p->period_us, by_min = span / p->min_us;
+    const int64_t by_wire = span / PLAN_ROW_MIN_US;
+    c->m = by_period < by_wire ? by_period : by_wire;
     if (c->m < 1)
         c->m = 1;
     const double stride_us = 1e6 * FW_ACC_STRIDE / (double)p->lim.segment_hz;
@@ -77,7 +89,7 @@ int plan_rows_next(const plan *p, plan_cursor *c, plan_row *row)
 {
     if (!c->held) {
         c->held = true;
-        row->t = (double)PLAN_HOLD_US * 1e-6;
+        row->t = (double)p->hold_us * 1e-6;
         memcpy(row->pose, p->wp[0].pose, sizeof row->pose);
         return 1;
     }
@@ -85,7 +97,7 @@ int plan_rows_next(const plan *p, plan_cursor *c, plan_row *row)
         return 0;
     const int64_t t0 = p->tw_us[c->a], span = p->tw_us[c->b] - t0;
     const int64_t t = c->j == c->m ? p->tw_us[c->b] : t0 + (span * c->j + c->m / 2) / c->m;
-    row->t = (double)(t + PLAN_HOLD_US) * 1e-6;
+    row->t = (double)(t + p->hold_us) * 1e-6;
     if (c->j == c->m && c->b == p->n - 1) {
         c->done = true;
         plan_path_eval(&p->path, p->path.length, row->pose, NULL, NULL);
@@ -101,7 +113,7 @@ int plan_rows_next(const plan *p, plan_cursor *c, plan_row *row)
 
 double plan_duration(const plan *p)
 {
-    return (double)(p->tw_us[p->n - 1] + PLAN_HOLD_US) * 1e-6;
+    return (double)(p->tw_us[p->n - 1] + p->hold_us) * 1e-6;
 }
 
 long plan_row_count(const plan *p)
@@ -121,9 +133,14 @@ void plan_start_slides(const plan *p, double q[6])
 
 int plan_row_waypoint(const plan *p, double t)
 {
-    const int64_t at = llround(t * 1e6) - PLAN_HOLD_US;
+    const int64_t at = llround(t * 1e6) - p->hold_us;
     int w = 0;
     while (w + 1 < p->n && p->tw_us[w + 1] <= at)
         ++w;
     return w;
+}
+
+double plan_hold(const plan *p)
+{
+    return (double)p->hold_us * 1e-6;
 }

@@ -146,8 +146,8 @@ int plan_time_law(plan *p, plan_result *r)
         p->tw_us[w] = llround(t * 1e6);
     }
     /* A path shorter than the wire's least dt still ends on a row of its own. */
-    if (p->tw_us[p->n - 1] < PLAN_ROW_MIN_US)
-        p->tw_us[p->n - 1] = PLAN_ROW_MIN_US;
+    if (p->tw_us[p->n - 1] < p->min_us)
+        p->tw_us[p->n - 1] = p->min_us;
     plan_cursor c;
     plan_row row;
     p->rows = 0;

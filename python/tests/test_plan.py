@@ -49,13 +49,13 @@ def test_refusals_name_the_waypoint():
 def test_the_parameters_given_are_planned_against():
     wp = np.array([[0, 0, 0.9, 0, 0, 0], [0, 0, 1.2, 0, 0, 0]])
     params = plan.default_params()
-    fast = plan.plan(wp, params=params, period=0.01)
-    params[[p[0] for p in P.PARAMS].index("slide_amax")] //= 4
-    slow = plan.plan(wp, params=params, period=0.01)
-    assert slow.a_limit == pytest.approx(fast.a_limit / 4)
+    fast = plan.plan(wp, params=params)
+    params[[p[0] for p in P.PARAMS].index("slide_vmax")] //= 2
+    slow = plan.plan(wp, params=params)
+    assert slow.v_limit == pytest.approx(0.075)
     assert slow.duration > fast.duration + 0.1
     # A speed cap on the plate from the first waypoint: slower still.
-    capped = plan.plan(wp, v=[0.1, math.nan], period=0.01)
+    capped = plan.plan(wp, v=[0.1, math.nan])
     assert capped.duration > 0.3 / 0.1
 
 

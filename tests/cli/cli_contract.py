@@ -828,19 +828,21 @@ check("plan of a path leaving the workspace between two waypoints names both and
 rc, out, err = run(["plan", write("late.csv", "x,y,z,roll,pitch,yaw,t\n0,0,0.9,0,0,0,0\n0,0,1.2,0,0,0,0.2\n")])
 check("plan of a time the slides cannot keep exits 3 naming the waypoint and the earliest time",
       rc == 3 and "waypoint 2 (line 3)" in err and "need until" in err, f"rc {rc} {err!r}")
-rc, out, err = run(["plan", "--period", "0.01", vert])
+rc, out, err = run(["plan", vert])
 traj = write("vert.traj", out)
 rows = [r for r in out.splitlines() if r and r[0].isdigit()]
 check("plan writes a header and rows of seven numbers, in whole microseconds and micrometres",
       rc == 0 and "\nt,x,y,z,roll,pitch,yaw\n" in out and len(rows) > 10 and
       all(len(r.split(",")) == 7 and all(len(f.split(".")[1]) == 6 for f in r.split(",")) for r in rows), out[:300])
-check("plan's first row holds the first waypoint 1 ms in, its last is the last waypoint",
-      rows[0] == "0.001000,0.000000,0.000000,0.900000,0.000000,0.000000,0.000000" and
+check("plan's first row holds the first waypoint traj_lead (0.2 s) in, its last is the last waypoint",
+      rows[0] == "0.200000,0.000000,0.000000,0.900000,0.000000,0.000000,0.000000" and
       rows[-1].endswith(",0.000000,0.000000,1.200000,0.000000,0.000000,0.000000"), f"{rows[0]} {rows[-1]}")
 s_lo, s_hi = vertical(0.9)[0], vertical(1.2)[0]
-ds, v, a = abs(s_hi - s_lo), 0.1392, 1.0  # the step generator's speed limit in effect, slide_amax
-T = float(rows[-1].split(",")[0]) - 0.001
-check("plan of the vertical line takes the bang-bang time of its slides within 2 %",
+# The step generator's speed limit in effect; slide_amax x 10 ms / 20 ms: rows 20 ms apart, each row's
+# change of speed seen whole over the validator's 10 ms stride (plan.h).
+ds, v, a = abs(s_hi - s_lo), 0.1392, 0.5
+T = float(rows[-1].split(",")[0]) - 0.2
+check("plan of the vertical line takes the bang-bang time of its slides (rows 20 ms apart) within 2 %",
       abs(T / (ds / v + v / a) - 1) < 0.02, f"{T} vs {ds / v + v / a}")
 rc, out, err = run(["check", traj])
 check("check accepts what plan wrote, saying the peaks", rc == 0 and "accepted" in out and err == "", f"rc {rc} {err!r}")
@@ -848,7 +850,10 @@ slow = write("slow.params", "slide_amax = 0.5\n")
 rc, out, err = run(["check", "--params", slow, traj])
 check("check with a lower slide_amax refuses it: exit 3, FILE:LINE, tsectl's words, the slide and how far over",
       rc == 3 and out == "" and f"{traj}:" in err and "rejected: timing" in err and "slide_amax" in err, f"rc {rc} {err!r}")
-rc, out, err = run(["plan", "--params", slow, "--period", "0.01", vert])
+rc, out, err = run(["plan", "--params", slow, vert])
+check("plan under that parameter file refuses rows 20 ms apart (the controller's queue), naming the least",
+      rc == 3 and out == "" and "use --period 0.0226" in err, f"rc {rc} {err!r}")
+rc, out, err = run(["plan", "--params", slow, "--period", "0.03", vert])
 check("plan under that parameter file takes longer, and check with it accepts it",
       rc == 0 and float([r for r in out.splitlines() if r and r[0].isdigit()][-1].split(",")[0]) > T + 0.05 and
       run(["check", "--params", slow, write("vert_slow.traj", out)])[0] == 0, f"rc {rc} {err!r}")

@@ -71,7 +71,7 @@ judged judge_rows(const fw_param_set *set, const plan *p, const double pose0[6])
         j.refused_row = 0;
         return j;
     }
-    const double T = plan_duration(p);
+    const double t0 = plan_hold(p), T = plan_duration(p) - t0; /* the motion's time, after the hold */
     const long n = plan_row_count(p);
     plan_cursor cur;
     plan_row row;
@@ -90,7 +90,7 @@ judged judge_rows(const fw_param_set *set, const plan *p, const double pose0[6])
         c.t.chk.v_ratio = c.t.chk.a_ratio = 0.0;
         j.v_peak = fmax(j.v_peak, v);
         j.a_peak = fmax(j.a_peak, a);
-        if (row.t >= 0.05 * T && row.t <= 0.95 * T) {
+        if (row.t >= t0 + 0.05 * T && row.t <= t0 + 0.95 * T) {
             ++j.rows_mid;
             j.rows_near += fmax(v, a) >= 0.9;
         }

@@ -15,7 +15,7 @@ plan_waypoint waypoint(double x, double y, double z, double roll, double pitch, 
 
 typedef struct {
     int refused_row;  /* -1: every row accepted */
-    long rows_mid;    /* rows outside the first and last 5 % of the time */
+    long rows_mid;    /* rows outside the first and last 5 % of the motion's time (after the hold) */
     long rows_near;   /* of those, rows with some slide at >= 90 % of its speed or acceleration limit */
     double v_peak, a_peak;
 } judged;

@@ -16,6 +16,7 @@
 
 #include "fw/types.h"
 #include "plan_support.h"
+#include "tse/ik.h"
 
 #define PI 3.14159265358979323846
 
@@ -65,7 +66,7 @@ static double uniform(double lo, double hi)
 static void test_random_paths(void **state)
 {
     (void)state;
-    const double periods[] = {0.02, 0.01};
+    const double periods[] = {0.02, 0.015};
     long mid = 0, near = 0;
     for (int set = 0; set < 24; ++set) {
         plan_waypoint wp[12];
@@ -86,7 +87,7 @@ static void test_random_paths(void **state)
         assert_int_equal(j.refused_row, -1);
         assert_true(j.v_peak <= 1.0 && j.a_peak <= 1.0);
         const double share = (double)j.rows_near / (double)j.rows_mid;
-        printf("# set %2d: %2d waypoints, %s, rows %.2f s apart: %.3f s, %ld rows; %.0f %% of rows near a limit\n", set,
+        printf("# set %2d: %2d waypoints, %s, rows %.3f s apart: %.3f s, %ld rows; %.0f %% of rows near a limit\n", set,
                n, o.blend > 0 ? "blend 4 mm" : "spline", o.period, plan_duration(p), plan_row_count(p), 100.0 * share);
         assert_true(share >= 0.6);
         if (o.blend == 0.0)
@@ -164,8 +165,8 @@ static void test_times_kept(void **state)
 }
 
 /* A plan the validator refuses is not returned: planned without margins (at the very limits, where
- * the rows' rounding takes some slide over) and with no retry allowed, the figure eight at rows
- * 10 ms apart is refused with the row and the controller's REJECT (a timing one). */
+ * the rows' rounding takes some slide over) and with no retry allowed, the figure eight is refused
+ * with the row and the controller's REJECT (a timing one). */
 static void test_never_returns_refused(void **state)
 {
     (void)state;
@@ -174,7 +175,6 @@ static void test_never_returns_refused(void **state)
         wp[k] = waypoint(0.05 * sin(2 * PI * k / 16), 0.05 * sin(4 * PI * k / 16), 1.0, 0, 0, 0);
     plan_options o;
     plan_options_default(&o);
-    o.period = 0.01;
     o.v_margin = o.a_margin = 1.0;
     o.retries = 0;
     plan_result r;
@@ -187,6 +187,65 @@ static void test_never_returns_refused(void **state)
     assert_non_null(p);
     assert_int_equal(judge_rows(NULL, p, wp[0].pose).refused_row, -1);
     free_plan(p);
+}
+
+/* The controller stops a trajectory whose queue holds less path than a stop needs: a ramp shedding
+ * the fastest slide speed v within 45 % of slide_amax lasts 2 v / (0.45 amax), and it wants half of
+ * it queued (docs/controller.md).  A host keeps at most its 32 rows less the 4 in flight queued, so
+ * over every 28 rows the path must last v / (0.45 amax) at the speeds of those rows, whatever the
+ * waypoints' spacing; rows closer than the speed limit allows are refused as a period. */
+static void test_rows_keep_the_controllers_queue_deep(void **state)
+{
+    (void)state;
+    enum { N = 240, QUEUED = 28 };
+    static plan_waypoint wp[N + 1];
+    for (int k = 0; k <= N; ++k) /* a circle of 240 waypoints 1.3 mm apart */
+        wp[k] = waypoint(0.05 * cos(2 * PI * k / N) - 0.05, 0.05 * sin(2 * PI * k / N), 1.0, 0, 0, 0);
+    plan_result r;
+    plan *p = make_plan(NULL, wp, N + 1, NULL, &r);
+    assert_non_null(p);
+    fw_param_set s;
+    fw_params_default(&s);
+    const double amax = s.v[FP_SLIDE_AMAX] * 1e-6;
+    tse_params kp;
+    tse_params_default(&kp);
+    tse_geometry g;
+    assert_int_equal(tse_geometry_init(&g, &kp), TSE_PARAM_OK);
+    static double t[4096], v[4096];
+    double q_prev[6];
+    tse_ik_result ik;
+    assert_int_equal(tse_ik(&g, wp[0].pose, NULL, &ik), TSE_OK);
+    memcpy(q_prev, ik.q, sizeof q_prev);
+    plan_cursor c;
+    plan_row row;
+    int n = 0;
+    for (plan_rows_begin(p, &c); plan_rows_next(p, &c, &row) && n < 4096; ++n) {
+        assert_int_equal(tse_ik(&g, row.pose, q_prev, &ik), TSE_OK);
+        t[n] = row.t;
+        v[n] = 0.0;
+        for (int k = 0; k < 6; ++k)
+            v[n] = fmax(v[n], fabs(ik.q[k] - q_prev[k]) / (row.t - (n ? t[n - 1] : 0.0)));
+        memcpy(q_prev, ik.q, sizeof q_prev);
+    }
+    assert_true(fabs(t[0] - s.v[FP_TRAJ_LEAD] * 1e-6) < 1e-9); /* the hold: the controller's lead */
+    for (int i = 1; i + QUEUED < n; ++i) {
+        double peak = 0.0;
+        for (int j = i; j <= i + QUEUED; ++j)
+            peak = fmax(peak, v[j]);
+        if (!(t[i + QUEUED] - t[i] >= peak / (0.45 * amax)))
+            fail_msg("rows %d..%d: %.4f s of path queued, a stop from %.4f m/s needs %.4f s", i, i + QUEUED,
+                     t[i + QUEUED] - t[i], peak, peak / (0.45 * amax));
+    }
+    free_plan(p);
+    /* Rows 10 ms apart: too close at the defaults' speed limit, refused naming the least period. */
+    plan_options o;
+    plan_options_default(&o);
+    o.period = 0.01;
+    assert_null(make_plan(NULL, wp, N + 1, &o, &r));
+    assert_int_equal(r.status, PLAN_BAD_INPUT);
+    assert_true(r.period_min > 0.01 && r.period_min < 0.02);
+    char why[512];
+    assert_non_null(strstr(plan_explain(&r, wp, why, sizeof why), "use --period"));
 }
 
 static void check_refusal(const plan_waypoint *wp, int n, plan_status status, int waypoint, int between,
@@ -230,6 +289,7 @@ int main(void)
         cmocka_unit_test(test_blend_cuts_corners),
         cmocka_unit_test(test_times_kept),
         cmocka_unit_test(test_never_returns_refused),
+        cmocka_unit_test(test_rows_keep_the_controllers_queue_deep),
         cmocka_unit_test(test_refusals_name_the_waypoint),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

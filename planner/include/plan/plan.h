@@ -35,6 +35,7 @@
 
 #include "fw/params.h"
 #include "fw/proto_table.h"
+#include "fw/traj.h"
 #include "tse/status.h"
 
 /* Grid spacing along the path [m], and the fewest grid points. */
@@ -51,11 +52,18 @@
 #define PLAN_BLEND_MAX 1.0
 /* Plans made again after a refusal, at most. */
 #define PLAN_RETRIES_DEFAULT 40
-/* Rows closer than this to a waypoint's row give way to it [us]: the wire's least dt. */
+/* The wire's least dt between rows [us]. */
 #define PLAN_ROW_MIN_US 1000
-/* The first row holds the first waypoint this long after the start [us]; the motion starts there,
- * and the waypoints' times count from the start (a given t of 0.5 s is passed at row time 0.5 s). */
-#define PLAN_HOLD_US PLAN_ROW_MIN_US
+/* The controller stops a trajectory whose queue holds less path than a stop from the speeds queued
+ * needs (an underrun: docs/controller.md, "Faults" and "Stops"): a ramp that sheds the fastest
+ * slide speed v within PLAN_STOP_SHARE of slide_amax, of which it wants half, v / (share amax), and
+ * two control periods queued.  The host keeps its queue of FW_TRAJ_CAPACITY rows full less the
+ * rows in flight, so rows closer than (v / (share amax) + margin) / PLAN_QUEUED_ROWS at the speed
+ * limit would leave too little path queued: the planner's rows are never closer (a waypoint passed
+ * sooner after the previous row has no row of its own), and a --period below that is refused. */
+#define PLAN_STOP_SHARE 0.45
+#define PLAN_QUEUED_ROWS (FW_TRAJ_CAPACITY - PROTO_TRAJ_WINDOW)
+#define PLAN_QUEUE_MARGIN_S 0.012
 
 typedef struct {
     double pose[6]; /* x, y, z [m], roll, pitch, yaw [rad] */
@@ -99,6 +107,7 @@ typedef struct {
     int32_t reject[PROTO_MAX_FIELDS]; /* REFUSED: the REJECT the controller would send for it */
     int retries;          /* plans made again */
     const char *why;      /* BAD_INPUT: what is wrong (a constant string) */
+    double period_min;    /* BAD_INPUT for a period too short: the least [s] */
 } plan_result;
 
 typedef struct plan plan;
@@ -113,7 +122,10 @@ plan *plan_make(void *mem, size_t bytes, const fw_param_set *s, const plan_waypo
                 const plan_options *o, plan_result *r);
 
 /* The rows: t [s, whole microseconds] after the start, pose [m, rad].  The first holds the first
- * waypoint (PLAN_HOLD_US). */
+ * waypoint traj_lead after the start (at least 1 ms): the controller starts its clock on it, and the
+ * plate waits at rest there while the host fills the queue ahead of the motion (the motion's first
+ * rows, a queue of the controller's lead only, would hold too little path for a stop once the plate
+ * is fast).  Waypoints' times count from the start (a given t of 0.5 s is passed at row time 0.5 s). */
 typedef struct {
     double t;
     double pose[6];
@@ -136,6 +148,10 @@ long plan_row_count(const plan *p);
 int plan_retries(const plan *p);
 /* The last waypoint passed at row time t [s] (0-based): what a message about a row names. */
 int plan_row_waypoint(const plan *p, double t);
+/* The first row's time [s]: where the motion starts. */
+double plan_hold(const plan *p);
+/* The rows' least spacing [s] (the controller's queue, PLAN_STOP_SHARE). */
+double plan_row_spacing_min(const fw_param_set *s);
 /* The slides at the first waypoint (where the validator starts). */
 void plan_start_slides(const plan *p, double q[6]);
 
@@ -143,7 +159,7 @@ void plan_start_slides(const plan *p, double q[6]);
 typedef struct {
     double v_peak, a_peak;  /* the worst speed and acceleration over their limits (1: at it) */
     double v_limit, a_limit;/* the limits in effect [m/s, m/s^2] */
-    long rows_mid;          /* rows outside the first and last 5 % of the time */
+    long rows_mid;          /* rows outside the first and last 5 % of the motion's time (after the hold) */
     long rows_near;         /* of those, rows with some slide at 90 % or more of a limit */
 } plan_stats;
 
