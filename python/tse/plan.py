@@ -37,7 +37,7 @@ class PlanError(ValueError):
 
 
 class Plan(namedtuple("Plan", "rows duration v_peak a_peak v_limit a_limit rows_mid rows_near retries")):
-    """rows: (n, 7) array t, x, y, z, roll, pitch, yaw (the first holds the first waypoint 1 ms in);
+    """rows: (n, 7) array t, x, y, z, roll, pitch, yaw (the first holds the first waypoint traj_lead in);
     duration [s]; v_peak, a_peak: the worst slide speed and acceleration over their limits as the
     controller's validator measures the rows; v_limit [m/s], a_limit [m/s^2]: the limits;
     rows_mid: rows outside the first and last 5 % of the time, rows_near: of those, rows with some

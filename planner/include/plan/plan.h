@@ -25,6 +25,10 @@
  * stretch is slowed and the plan made again, a bounded number of times: a plan is never returned
  * that the validator refuses.
  *
+ * A waypoint's time (t) holds the stretch before it to the share of the limits that passes it then
+ * (a bisection); a speed cap (v) bounds the plate's speed from it on.  No jerk limit: the
+ * controller's trajectory validator holds rows to speed and acceleration only, and so does this.
+ *
  * No heap: the caller gives the memory (plan_bytes says how much).  Host only (double). */
 #ifndef PLAN_PLAN_H
 #define PLAN_PLAN_H
