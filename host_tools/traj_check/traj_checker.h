@@ -34,4 +34,8 @@ int traj_checker_push(traj_checker *c, uint32_t dt_us, const double pose[6], boo
 /* The worst slide speed and acceleration so far against their limits (1 = at the limit). */
 void traj_checker_peaks(const traj_checker *c, double *v_peak, double *a_peak);
 
+/* The same since the previous call (or the start), then forgotten: called after each row, a row's
+ * own (the planner's figure of rows near a limit).  The check of the rows after is unchanged. */
+void traj_checker_take_peaks(traj_checker *c, double *v_peak, double *a_peak);
+
 #endif

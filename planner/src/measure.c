@@ -1,5 +1,5 @@
 /* How near a plan's rows come to the slide limits, row by row, as the controller's validator
- * measures them (its running worst values read and cleared after each row). */
+ * measures them (its worst values taken after each row). */
 #include <math.h>
 
 #include "plan_internal.h"
@@ -26,8 +26,7 @@ int plan_measure(const plan *p, plan_stats *st)
             return -1;
         prev = t;
         double v, a;
-        traj_checker_peaks(&c, &v, &a);
-        c.t.chk.v_ratio = c.t.chk.a_ratio = 0; /* the next row's own */
+        traj_checker_take_peaks(&c, &v, &a); /* this row's own */
         st->v_peak = fmax(st->v_peak, v);
         st->a_peak = fmax(st->a_peak, a);
         if (row.t >= t0 + 0.05 * T && row.t <= t0 + 0.95 * T) {

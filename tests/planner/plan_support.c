@@ -85,9 +85,8 @@ judged judge_rows(const fw_param_set *set, const plan *p, const double pose0[6])
             return j;
         }
         prev = t;
-        /* This row's own worst demand: the checker's running worst, cleared after each row. */
-        const double v = (double)c.t.chk.v_ratio, a = (double)c.t.chk.a_ratio;
-        c.t.chk.v_ratio = c.t.chk.a_ratio = 0.0;
+        double v, a;
+        traj_checker_take_peaks(&c, &v, &a); /* this row's own worst demand */
         j.v_peak = fmax(j.v_peak, v);
         j.a_peak = fmax(j.a_peak, a);
         if (row.t >= t0 + 0.05 * T && row.t <= t0 + 0.95 * T) {
