@@ -3,6 +3,7 @@
 #include "fw/quat.h"
 #include "fw/slide_check.h"
 #include "fw/validate.h"
+#include "fw/work.h"
 
 /* Planning keeps this fraction of every slide limit in hand for the step quantisation. */
 #define LIMIT_MARGIN TSE_R(0.95)
@@ -258,6 +259,8 @@ int fw_move_blend(const fw_move *a, const fw_move *b, const tse_geometry *g, con
                          lim->segment_hz, a->q_from);
     tse_real t_prev = TSE_R(0.0);
     for (uint32_t s = 1; s <= total; ++s) {
+        if (fw_work_point())
+            return 1; /* stopped from outside (fw/work.h): no blend */
         tse_real t = (tse_real)s / lim->segment_hz;
         if (s == total)
             t = t0 + b->prof.T;

@@ -1,5 +1,6 @@
 #include "fw/validate.h"
 
+#include "fw/work.h"
 #include "tse/enclose.h"
 
 static void copy6(tse_real dst[6], const tse_real src[6])
@@ -29,6 +30,10 @@ int fw_validate_per_segment(const fw_move *mv, const tse_geometry *g, const fw_l
     v->per_segment = true;
     tse_real t_prev = TSE_R(0.0);
     for (uint32_t s = 1; s <= mv->segments; ++s) {
+        if (fw_work_point()) {
+            res->reason = FW_REASON_STATE; /* stopped from outside (fw/work.h) */
+            return -1;
+        }
         const tse_real t = fw_move_segment_time(mv, lim, s);
         tse_real pose[6];
         fw_move_pose(mv, t, pose);
@@ -220,6 +225,10 @@ static __attribute__((noinline)) int prove(const fw_move *mv, const tse_geometry
     bool have_prev = false;
     uint32_t s0 = 0, len = n;
     while (s0 < n) {
+        if (fw_work_point()) {
+            res->reason = FW_REASON_STATE; /* stopped from outside (fw/work.h) */
+            return -1;
+        }
         const uint32_t s1 = n - s0 > len ? s0 + len : n;
         const tse_real t0 = fw_move_segment_time(mv, lim, s0), t1 = fw_move_segment_time(mv, lim, s1);
         const tse_real tc = TSE_R(0.5) * (t0 + t1);

@@ -220,8 +220,8 @@ class BoardEmu(unittest.TestCase):
         self.assertEqual(c2.params.get("homing_speed"), 0.025)
 
     def test_watchdog_reset(self):
-        """A main loop that stops feeding the watchdog is reset by it 2 s later (the firmware's
-        WATCHDOG_MS): stopped here by a debugger write of the ticker's idle hook."""
+        """A board that stops feeding the watchdog is reset by it 2 s later (the firmware's
+        WATCHDOG_MS): stopped here by a debugger write of the control tick's feed flag."""
         gdb = shutil.which("gdb-multiarch") or shutil.which("arm-none-eabi-gdb")
         if not gdb:
             self.skipTest("gdb-multiarch not installed (scripts/setup.sh)")
@@ -231,7 +231,7 @@ class BoardEmu(unittest.TestCase):
         self.wait_virtual(em, 3.0)  # fed all along: no reset
         self.assertEqual(len(self.boot_lines(em)), 1, em.read_console())
         r = subprocess.run([gdb, "-batch", "-nx", "-ex", f"file {ELF}", "-ex", f"target remote 127.0.0.1:{port}",
-                            "-ex", "set var tse_board.ticker.idle = 0", "-ex", "detach"],
+                            "-ex", "set var tse_board.feed = 0", "-ex", "detach"],
                            capture_output=True, text=True, timeout=60)
         self.assertEqual(r.returncode, 0, r.stderr)
         t0 = em.time_ns()

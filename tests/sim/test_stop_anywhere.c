@@ -32,11 +32,11 @@ static void stop_here(uint32_t ms)
     rig_cmd(&R, PM_STOP);
     rig_run(&R, 1);
     /* (Or, at the very end, the last setpoints were already stepping out: nothing to stop.) */
-    if (R.fw.state != FW_STATE_STOPPING && !(R.fw.state == FW_STATE_MOVING && R.fw.src == FW_SRC_NONE))
-        fail_msg("STOP %u ms in: state %d, src %d, tau %.4f", ms, R.fw.state, R.fw.src, (double)R.fw.tau);
+    if (fw_state_of(R.fw) != FW_STATE_STOPPING && !(fw_state_of(R.fw) == FW_STATE_MOVING && rig_now(&R).src == FW_SRC_NONE))
+        fail_msg("STOP %u ms in: state %d, src %d, tau %.4f", ms, fw_state_of(R.fw), rig_now(&R).src, (double)rig_now(&R).tau);
     if (!rig_until(&R, FW_STATE_IDLE, 10000))
-        fail_msg("STOP %u ms in: state %d, fault %d", ms, R.fw.state, R.fw.fault);
-    if (homing && R.fw.homed)
+        fail_msg("STOP %u ms in: state %d, fault %d", ms, fw_state_of(R.fw), fw_fault_of(R.fw));
+    if (homing && fw_homed_of(R.fw))
         fail_msg("STOP %u ms in: a homing stopped short set a zero", ms);
     R = here;
 }
@@ -48,11 +48,11 @@ static void test_stop_anywhere_in_homing(void **state)
     rig_cmd(&R, PM_ENABLE);
     rig_run(&R, 10);
     rig_cmd(&R, PM_HOME);
-    for (int t = 0; t < 60000 && R.fw.src != FW_SRC_JOINT; ++t)
+    for (int t = 0; t < 60000 && rig_now(&R).src != FW_SRC_JOINT; ++t)
         rig_run(&R, 1);
-    assert_int_equal(R.fw.src, FW_SRC_JOINT);
+    assert_int_equal(rig_now(&R).src, FW_SRC_JOINT);
     homing = true;
-    const uint32_t T = (uint32_t)(R.fw.joint.prof.T * 1000.0), Ta = (uint32_t)(R.fw.joint.prof.Ta * 1000.0);
+    const uint32_t T = (uint32_t)(rig_now(&R).joint_T * 1000.0), Ta = (uint32_t)(rig_now(&R).joint_Ta * 1000.0);
     unsigned stops = 0;
     for (uint32_t ms = 0, step; ms < T; ms += step) {
         stop_here(ms);
@@ -76,13 +76,13 @@ static void test_stop_anywhere_in_a_blend(void **state)
     rig_run(&R, 300);
     rig_move(&R, b, 1500);
     rig_run(&R, 1);
-    assert_true(R.fw.has_next);
-    const uint32_t k0 = R.fw.blend_k0, T = (uint32_t)((R.fw.blend_k0 / 1000.0 + R.fw.next.prof.T) * 1000.0) -
-                                             R.fw.segments_run;
-    assert_true(k0 < R.fw.move.segments); /* blended, not back to back */
+    assert_true(rig_now(&R).has_next);
+    const uint32_t k0 = rig_now(&R).blend_k0, T = (uint32_t)((rig_now(&R).blend_k0 / 1000.0 + rig_now(&R).next.prof.T) * 1000.0) -
+                                             rig_now(&R).segments_run;
+    assert_true(k0 < rig_now(&R).move.segments); /* blended, not back to back */
     unsigned stops = 0, in_blend = 0;
     for (uint32_t ms = 0, step; ms < T; ms += step) {
-        const bool overlap = R.fw.has_next && R.fw.tau >= k0 / 1000.0; /* both moves running */
+        const bool overlap = rig_now(&R).has_next && rig_now(&R).tau >= k0 / 1000.0; /* both moves running */
         in_blend += overlap;
         stop_here(ms);
         ++stops;
@@ -120,8 +120,8 @@ static void test_stop_anywhere_in_moves(void **state)
         const uint8_t s = rig_move(&R, moves[i].to, moves[i].ms);
         rig_run(&R, 1);
         assert_int_equal(rig_answer(&R, from, proto_table[PM_MOVE_COMMIT].function, s, NULL), 'a');
-        const uint32_t T = (uint32_t)(R.fw.move.prof.T * 1000.0);
-        print_message("move %zu: %.3f s, ramps of %.3f s\n", i + 1, (double)R.fw.move.prof.T, (double)R.fw.move.prof.Ta);
+        const uint32_t T = (uint32_t)(rig_now(&R).move.prof.T * 1000.0);
+        print_message("move %zu: %.3f s, ramps of %.3f s\n", i + 1, (double)rig_now(&R).move.prof.T, (double)rig_now(&R).move.prof.Ta);
         for (uint32_t ms = 0, step; ms < T; ms += step) {
             stop_here(ms);
             ++stops;

@@ -1,4 +1,5 @@
 #define _GNU_SOURCE
+#include <signal.h>
 #include <stdint.h>
 #include <sys/timerfd.h>
 #include <time.h>
@@ -6,48 +7,66 @@
 
 #include "hal_posix/posix_hal.h"
 
-static int start(void *ctx, uint32_t control_hz, void (*control)(void *), uint32_t step_hz, void (*step)(void *),
-                 void *arg)
+static void *tick_thread(void *arg)
 {
-    posix_ticker *t = ctx;
-    if (control_hz == 0 || step_hz % control_hz != 0 || 1000000000u % control_hz != 0)
-        return -1;
-    const int fd = timerfd_create(CLOCK_MONOTONIC, 0);
-    if (fd < 0)
-        return -1;
-    const long period_ns = (long)(1000000000u / control_hz);
-    struct itimerspec its = {{0, period_ns}, {0, period_ns}};
-    if (timerfd_settime(fd, 0, &its, NULL) < 0) {
-        close(fd);
-        return -1;
-    }
-    const uint32_t steps = step_hz / control_hz;
-    while (!t->stop) {
+    posix_ticker *t = arg;
+    while (!atomic_load(&t->stop)) {
         uint64_t expirations = 0;
-        if (read(fd, &expirations, sizeof expirations) != (ssize_t)sizeof expirations)
-            continue; /* a signal: check stop */
+        if (read(t->fd, &expirations, sizeof expirations) != (ssize_t)sizeof expirations)
+            continue;
         if (expirations > 1)
             t->overruns += expirations - 1;
         if (expirations > t->max_behind)
             t->max_behind = expirations;
         t->periods += expirations;
         /* Late periods are made up, so simulated time keeps pace with the wall clock. */
-        for (uint64_t e = 0; e < expirations && !t->stop; ++e) {
-            control(arg);
-            for (uint32_t s = 0; s < steps; ++s)
-                step(arg);
+        for (uint64_t e = 0; e < expirations && !atomic_load(&t->stop); ++e) {
+            t->control(t->arg);
+            for (uint32_t s = 0; s < t->steps; ++s)
+                t->step(t->arg);
         }
     }
-    close(fd);
+    return NULL;
+}
+
+int posix_ticker_start(posix_ticker *t, uint32_t control_hz, void (*control)(void *arg), uint32_t step_hz,
+                       void (*step)(void *arg), void *arg)
+{
+    t->fd = -1;
+    if (control_hz == 0 || step_hz % control_hz != 0 || 1000000000u % control_hz != 0)
+        return -1;
+    atomic_store(&t->stop, 0);
+    t->periods = t->overruns = t->max_behind = 0;
+    t->control_hz = control_hz;
+    t->steps = step_hz / control_hz;
+    t->control = control;
+    t->step = step;
+    t->arg = arg;
+    t->fd = timerfd_create(CLOCK_MONOTONIC, 0);
+    if (t->fd < 0)
+        return -1;
+    const long period_ns = (long)(1000000000u / control_hz);
+    struct itimerspec its = {{0, period_ns}, {0, period_ns}};
+    sigset_t all, old;
+    sigfillset(&all);
+    /* The thread inherits the mask: every signal stays with the caller's thread. */
+    pthread_sigmask(SIG_SETMASK, &all, &old);
+    const int rc = timerfd_settime(t->fd, 0, &its, NULL) == 0 ? pthread_create(&t->thread, NULL, tick_thread, t) : -1;
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    if (rc != 0) {
+        close(t->fd);
+        t->fd = -1;
+        return -1;
+    }
     return 0;
 }
 
-static void stop(void *ctx)
+void posix_ticker_stop(posix_ticker *t)
 {
-    ((posix_ticker *)ctx)->stop = 1;
-}
-
-hal_ticker posix_ticker_hal(posix_ticker *t)
-{
-    return (hal_ticker){t, start, stop};
+    if (t->fd < 0)
+        return;
+    atomic_store(&t->stop, 1);
+    pthread_join(t->thread, NULL); /* the timer fires within a period: the read returns */
+    close(t->fd);
+    t->fd = -1;
 }

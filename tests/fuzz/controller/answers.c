@@ -119,14 +119,16 @@ static void judge_commit(oracle_model *o, const rig *r, const oracle_outputs *ou
     if (out->n_ack) {
         FUZZ_CHECK(complete && fresh && o->before.homed);
         spends = true;
-        const fw_controller *c = &r->c;
+        fw_inspection in;
+        fw_inspect(r->c, &in);
+        const fw_inspection *c = &in;
         if (o->wf.msg == PM_MOVE_COMMIT) {
             check_target(o, o->before.state == FW_STATE_MOVING ? c->next.to : c->move.to);
             /* The planned duration is at least the one asked for. */
             if (o->wf.v[1] == 0)
                 FUZZ_CHECK(out->ack[4] + 1 >= o->wf.v[2]);
         } else {
-            check_target(o, c->traj.tail.pose);
+            check_target(o, c->traj_tail);
             /* A trajectory starts with its first row, at rest; the others join it while it runs. */
             FUZZ_CHECK(first == (o->before.state == FW_STATE_IDLE));
             if (first)
@@ -236,9 +238,9 @@ static void judge_params(oracle_model *o, rig *r, const oracle_outputs *out, boo
     const bool changed = o->params.v[id] != value;
     o->params.v[id] = (int32_t)value;
     if (rezeroes((unsigned)id) && changed)
-        FUZZ_CHECK(!r->c.homed);
+        FUZZ_CHECK(!fw_homed_of(r->c));
     else if (!hooked) /* (an e-stop drops the zero) */
-        FUZZ_CHECK(r->c.homed == o->before.homed);
+        FUZZ_CHECK(fw_homed_of(r->c) == o->before.homed);
     rig_plant_follow(r, &o->params);
     plant_check_reset(r, &o->params);
 }
@@ -247,7 +249,9 @@ static void judge_params(oracle_model *o, rig *r, const oracle_outputs *out, boo
  * what it tells the model. */
 static void judge_effect(oracle_model *o, rig *r, proto_msg m, bool strict)
 {
-    const fw_controller *c = &r->c;
+    fw_inspection in;
+    fw_inspect(r->c, &in);
+    const fw_inspection *c = &in;
     const fw_state was = o->before.state, s = c->state;
     if (m == PM_ENABLE)
         o->last_alive_us = r->f.now_us;

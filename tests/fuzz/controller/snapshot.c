@@ -4,7 +4,9 @@
 
 void snapshot_take(const rig *r, snapshot *s)
 {
-    const fw_controller *c = &r->c;
+    fw_inspection in;
+    fw_inspect(r->c, &in);
+    const fw_inspection *c = &in;
     memset(s, 0, sizeof *s);
     s->state = c->state;
     s->fault = c->fault;
@@ -41,32 +43,32 @@ void snapshot_take(const rig *r, snapshot *s)
     s->stop_T = c->stopping ? c->stop_T : TSE_R(0.0);
     s->tau = c->tau;
     s->segments_run = c->segments_run;
-    s->traj_depth = fw_traj_depth(&c->traj);
+    s->traj_depth = c->traj_depth;
     if (c->src == FW_SRC_TRAJ) {
-        s->traj_end_us = fw_traj_end_us(&c->traj);
-        s->traj_closed = c->traj.closed;
+        s->traj_end_us = c->traj_end_us;
+        s->traj_closed = c->traj_closed;
     }
-    s->run_open = c->run.open;
-    s->run_clock = c->run.clock;
-    s->run_id = c->run.id;
-    s->run_next_seq = c->run.next_seq;
-    s->run_rows = c->run.rows;
-    s->run_ended = c->run.ended;
-    s->run_fault = c->run.fault;
-    s->run_ended_id = c->run.ended_id;
-    s->run_ended_rows = c->run.ended_rows;
-    s->run_ended_us = c->run.ended_us;
-    s->home_active = c->home.active;
-    s->home_abort = c->home.abort;
-    s->home_phase = c->home.phase;
-    memcpy(s->home_axis, c->home.axis, sizeof s->home_axis);
-    s->sg_cfg = c->sg.cfg;
-    s->sg_queued = stepgen_queued(&c->sg);
-    s->sg_idle = stepgen_idle(&c->sg);
-    stepgen_positions(&c->sg, s->sg_pos);
+    s->run_open = c->run_open;
+    s->run_clock = c->run_clock;
+    s->run_id = c->run_id;
+    s->run_next_seq = c->run_next_seq;
+    s->run_rows = c->run_rows;
+    s->run_ended = c->run_ended;
+    s->run_fault = c->run_fault;
+    s->run_ended_id = c->run_ended_id;
+    s->run_ended_rows = c->run_ended_rows;
+    s->run_ended_us = c->run_ended_us;
+    s->home_active = c->home_active;
+    s->home_abort = c->home_abort;
+    s->home_phase = c->home_phase;
+    memcpy(s->home_axis, c->home_axis, sizeof s->home_axis);
+    s->sg_cfg = c->sg_cfg;
+    s->sg_queued = c->sg_queued;
+    s->sg_idle = c->sg_idle;
+    memcpy(s->sg_pos, c->sg_pos, sizeof s->sg_pos);
     memcpy(s->q, c->q, sizeof s->q);
     memcpy(s->pose, c->pose, sizeof s->pose);
-    s->last_heartbeat_us = c->last_heartbeat_us;
+    s->heartbeat_us = c->heartbeat_us;
 }
 
 #define SAME(field)                                                                                \
@@ -135,6 +137,6 @@ bool snapshot_same(const snapshot *a, const snapshot *b, bool spent, const char 
     SAME(sg_pos);
     SAME(q);
     SAME(pose);
-    SAME(last_heartbeat_us);
+    SAME(heartbeat_us);
     return true;
 }

@@ -43,7 +43,7 @@ typedef struct {
     unsigned traj_depth;
     uint64_t traj_end_us;
     bool traj_closed;
-    /* The trajectory's life (fw_traj_run), but the TRAJ_END still to send (a poll sends it). */
+    /* The trajectory's life (fw/inspect.h), but the TRAJ_END still to send (a poll sends it). */
     bool run_open, run_clock;
     uint8_t run_id, run_next_seq, run_ended_id;
     uint32_t run_rows, run_ended_rows;
@@ -58,7 +58,7 @@ typedef struct {
     bool sg_idle;
     int32_t sg_pos[6];
     tse_real q[6], pose[6];
-    uint64_t last_heartbeat_us;
+    uint32_t heartbeat_us;
 } snapshot;
 
 void snapshot_take(const rig *r, snapshot *s);
