@@ -79,7 +79,7 @@ static void check_status(const rig *r, const int64_t *v)
         FUZZ_CHECK(((flags & 2) != 0) == r->f.enabled);
         FUZZ_CHECK(((flags & 4) != 0) == o.estop_read);
     }
-    FUZZ_CHECK(((flags & 16) != 0) == r->f.can_state.error_passive);
+    FUZZ_CHECK(((flags & 16) != 0) == o.passive_read);
     check_queue_fields(v[3], v[4]);
     FUZZ_CHECK(v[3] == c->traj_depth);
     if (o.any_commit)
@@ -256,7 +256,7 @@ void oracle_reboot(rig *r)
     o.saved = o.params = saved;
     o.state = FW_STATE_DISABLED;
     FUZZ_CHECK(fw_state_of(r->c) == FW_STATE_DISABLED);
-    o.estop_read = false; /* no control tick has read it yet */
+    o.estop_read = o.passive_read = false; /* no control tick has read them yet */
     FUZZ_CHECK(!fw_homed_of(r->c));
     rig_plant_follow(r, &o.params);
     plant_check_reset(r, &o.params);
@@ -326,6 +326,7 @@ void oracle_after_control(rig *r)
      * controller in ESTOP by now (system.md: e-stop cuts stepping at once). */
     FUZZ_CHECK(!r->f.estop_open || o.cut_inside || c->state == FW_STATE_ESTOP);
     o.estop_read = r->f.estop_open;
+    o.passive_read = r->f.can_state.error_passive;
     memcpy(o.steps_read, r->f.steps, sizeof o.steps_read);
     observe(r, true);
     /* Silence past the watchdog timeout, one control period to notice: the robot is being
