@@ -5,6 +5,7 @@
 #include "adopt.h"
 #include "fw/command_table.h"
 #include "homing.h"
+#include "inbox.h"
 #include "motion.h"
 #include "publish.h"
 #include "state.h"
@@ -25,8 +26,10 @@ fw_verdict fw_handover(fw_controller *c)
     if (!c->cfg.await)
         fw_handover_take(c);
     else
-        while (atomic_load_explicit(&s->taken, memory_order_acquire) != n)
+        while (atomic_load_explicit(&s->taken, memory_order_acquire) != n) {
             c->cfg.await(c->cfg.await_ctx);
+            fw_inbox_look(c); /* the host's heartbeats go on meanwhile */
+        }
     const fw_verdict v = s->verdict;
     fw_view_read(c);
     return v;

@@ -54,6 +54,13 @@ static bool watch(void *ctx)
     return th->abandon;
 }
 
+void fw_inbox_look(fw_controller *c)
+{
+    const bool abandon = c->th.abandon;
+    watch(c);
+    c->th.abandon = abandon; /* a look ends no validation */
+}
+
 void fw_inbox_watch_begin(fw_controller *c, bool moving)
 {
     c->th.watch_moving = moving;

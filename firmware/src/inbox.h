@@ -21,6 +21,10 @@ void fw_inbox_watch_begin(fw_controller *c, bool moving);
 /* Its end: true when a STOP or an ESTOP ended it (or came while it ran, for a motion). */
 bool fw_inbox_watch_end(fw_controller *c);
 
+/* One look at the bus as above, outside a validation: while the thread waits for the control tick
+ * to take a command (fw/runtime.h), heartbeats are taken and an ESTOP halts stepping meanwhile. */
+void fw_inbox_look(fw_controller *c);
+
 /* The oldest STOP or ESTOP in the inbox, taken out of it (the one that ended a validation, answered
  * before the frames ahead of it).  Returns false when there is none. */
 bool fw_inbox_take_stop(fw_controller *c, hal_can_frame *f);

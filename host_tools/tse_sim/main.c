@@ -16,6 +16,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
 #include <poll.h>
+#include <sched.h>
+#include <stdatomic.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -164,19 +166,35 @@ static void control(void *arg)
     fflush(stdout);
 }
 
+/* A step tick under way in the tick thread.  On the board nothing runs beside a step tick: the
+ * controller's thread, halting stepping for an ESTOP frame, switches the drives off after any
+ * step tick that decided its pulses before the halt.  Here the two are threads: the switch waits
+ * for that step tick (at most one, a microsecond) before it reaches the drives. */
+static atomic_bool in_step;
+static hal_stepper drives;
+
 static void step(void *arg)
 {
     sim *s = arg;
+    atomic_store(&in_step, true);
+    atomic_thread_fence(memory_order_seq_cst); /* before the step generator reads its halt */
     fw_step_tick(s->fw);
+    atomic_store(&in_step, false);
     plant_tick(&s->plant);
 }
 
-/* The controller's thread waits for the tick (fw_config.await): a tick comes every millisecond. */
+static void enable_after_step(void *ctx, bool on)
+{
+    if (!on)
+        while (atomic_load(&in_step))
+            sched_yield();
+    drives.enable(ctx, on);
+}
+
+/* The controller's thread waits for the tick (fw_config.await): the next control call. */
 static void await_tick(void *ctx)
 {
-    (void)ctx;
-    const struct timespec ts = {0, 50000};
-    nanosleep(&ts, NULL);
+    posix_ticker_await(ctx);
 }
 
 static int usage(const char *why)
@@ -293,7 +311,9 @@ int main(int argc, char **argv)
         hal.inputs = fault_inputs_hal(&s.finputs);
         hal.stepper = fault_stepper_hal(&s.fstepper);
     }
-    const fw_config cfg = {(uint8_t)node, CONTROL_HZ, STEP_HZ, await_tick, NULL};
+    drives = hal.stepper;
+    hal.stepper.enable = enable_after_step;
+    const fw_config cfg = {(uint8_t)node, CONTROL_HZ, STEP_HZ, await_tick, &ticker};
     s.fw = fw_init(&s.fw_mem, &hal, &cfg);
     if (!s.fw) {
         fprintf(stderr, "tse-sim: the controller did not start\n");

@@ -41,6 +41,7 @@ typedef struct {
     /* The tick thread's */
     pthread_t thread;
     int fd;
+    int efd;             /* an eventfd the tick thread signals after every control call */
     uint32_t control_hz, steps;
     void (*control)(void *arg);
     void (*step)(void *arg);
@@ -52,6 +53,11 @@ typedef struct {
  * or timer it cannot have. */
 int posix_ticker_start(posix_ticker *t, uint32_t control_hz, void (*control)(void *arg), uint32_t step_hz,
                        void (*step)(void *arg), void *arg);
+
+/* Waits until the tick thread has made a control call since the wait began, or one that came
+ * just before it (the caller checks what it waits for and waits again): for the controller's
+ * thread handing a command over (fw_config.await).  Never makes the tick thread wait. */
+void posix_ticker_await(posix_ticker *t);
 
 /* Stops the tick thread and waits for it; the counts are then final. */
 void posix_ticker_stop(posix_ticker *t);
