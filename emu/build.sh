@@ -6,7 +6,8 @@
 #
 # <key> hashes emu/'s build inputs (hw/, qemu/, this script) and the source package's version,
 # so a second run with the binary present does nothing but print its path.  The last line of
-# stdout is always that path.
+# stdout is always that path.  Exit status: 0 built (or already), 3 QEMU's source package cannot
+# be fetched (said on stderr with apt's last words), 1 any other failure, 2 a usage error.
 #
 # Usage: emu/build.sh [--update] [--clean] [-j N] | --path
 #   --path    print the binary's path if it is built for emu/ as it is, else fail (exit 1)
@@ -104,7 +105,7 @@ fetch_failed() {
   say "cannot fetch QEMU's source package: $1"
   say "  (apt-get source qemu through deb-src lines for the suites of /etc/apt: $apt_dir/sources.list)"
   [ -f "$apt_dir/log" ] && sed 's/^/  | /' "$apt_dir/log" | tail -8 >&2
-  exit 1
+  exit 3
 }
 
 # Asks the archive for the newest qemu source version; writes it to $version_file.

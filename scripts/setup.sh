@@ -6,6 +6,7 @@ set -euo pipefail
 
 packages=(
   cmake make gcc libc6-dev          # host build
+  ccache                            # compiled objects kept across clones (CMakeLists.txt: TSE_CCACHE)
   libcmocka-dev                     # unit tests
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi   # the board build
   qemu-system-arm gdb-multiarch     # on-target tests and instruction counts (netduinoplus2)

@@ -24,7 +24,7 @@ done
 mkdir -p "$out"
 # Configure only: nothing is generated at build time, so the compile databases are complete.
 for preset in host stm32f4; do
-  cmake --preset "$preset" -B "$out/$preset" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DBUILD_TESTING=OFF \
+  cmake --preset "$preset" -B "$out/$preset" -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DTSE_CCACHE=OFF -DBUILD_TESTING=OFF \
     >"$out/configure-$preset.log" 2>&1 ||
     { cat "$out/configure-$preset.log" >&2; echo "static: the $preset configure failed" >&2; exit 2; }
 done

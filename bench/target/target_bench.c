@@ -8,15 +8,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fw/controller.h"
+#include "bench_rig.h"
+#include "frame_cases.h"
 #include "fw/inspect.h"
 #include "fw/move.h"
-#include "fw/proto.h"
 #include "fw/runtime.h"
 #include "fw/stepgen.h"
-#include "fw/testing.h"
-#include "hal_stm32f4/regs_rcc.h"
-#include "hal_stm32f4/regs_tim.h"
 #include "hal_stm32f4/semihost.h"
 #include "tse/fk.h"
 #include "tse/ik.h"
@@ -28,26 +25,7 @@ static uint32_t overhead;
 
 static inline uint32_t count(void)
 {
-    return TSE_TIM2->CNT;
-}
-
-static void counter_start(void)
-{
-    TSE_RCC->APB1ENR |= RCC_APB1ENR_TIM2;
-    TSE_TIM2->CR1 = 0;
-    TSE_TIM2->PSC = 0;
-    TSE_TIM2->ARR = 0xFFFFFFFFu;
-    TSE_TIM2->EGR = TIM_EGR_UG;
-    TSE_TIM2->CR1 = TIM_CR1_CEN;
-    /* Two reads back to back: what a measurement of nothing reads. */
-    uint32_t lo = UINT32_MAX;
-    for (int i = 0; i < 16; ++i) {
-        const uint32_t a = count();
-        const uint32_t b = count();
-        if (b - a < lo)
-            lo = b - a;
-    }
-    overhead = lo;
+    return bench_count();
 }
 
 static int cmp_u32(const void *a, const void *b)
@@ -156,100 +134,20 @@ static void bench_stepgen(void)
     report("step_tick_6axes_max", first, n_first, 1);
 }
 
-/* The controller on an in-RAM HAL: enough to run its control tick while moving.  Frames come
- * through a small ring the benchmark fills and the controller's poll empties. */
-static uint64_t fake_now;
-static hal_can_frame rx[8];
-static unsigned rx_head, rx_count;
-static int can_send(void *c, const hal_can_frame *f) { (void)c; (void)f; return 0; }
-static int can_receive(void *c, hal_can_frame *f)
-{
-    (void)c;
-    if (rx_count == 0)
-        return 0;
-    *f = rx[rx_head];
-    rx_head = (rx_head + 1u) % 8u;
-    --rx_count;
-    return 1;
-}
-static void can_state(void *c, hal_can_state *s) { (void)c; memset(s, 0, sizeof *s); }
-static void st_dir(void *c, uint8_t m) { (void)c; (void)m; }
-static void st_pulse(void *c, uint8_t m) { (void)c; (void)m; }
-static void st_enable(void *c, bool on) { (void)c; (void)on; }
-static uint16_t in_limits(void *c) { (void)c; return 0; }
-static bool in_estop(void *c) { (void)c; return false; }
-static uint64_t clk_now(void *c) { (void)c; return fake_now; }
-static int st_load(void *c, void *b, size_t n) { (void)c; (void)b; (void)n; return 0; }
-static int st_save(void *c, const void *b, size_t n) { (void)c; (void)b; (void)n; return -1; }
-
-static fw_controller_mem ctl_mem;
-static fw_controller *ctl;
-
-/* Queues a frame for the controller's next poll. */
-static void frame(proto_msg msg, const int32_t *v)
-{
-    proto_message m;
-    memset(&m, 0, sizeof m);
-    m.msg = msg;
-    m.node = 1;
-    for (int i = 0; i < proto_table[msg].nfields; ++i)
-        m.v[i] = v[i];
-    hal_can_frame f;
-    proto_encode(&m, &f);
-    rx[(rx_head + rx_count) % 8u] = f;
-    ++rx_count;
-}
-
-static void stage(uint8_t seq, const tse_real pose[6])
-{
-    for (int part = 0; part < 3; ++part) {
-        const int32_t v[3] = {seq, (int32_t)(pose[2 * part] * TSE_R(1e6)), (int32_t)(pose[2 * part + 1] * TSE_R(1e6))};
-        frame((proto_msg)(PM_POSE_A + part), v);
-    }
-    fw_poll(ctl);
-}
-
-/* A control period with the host alive: the control tick (measured into *c if c), the step ticks. */
-static void period(uint32_t *c)
-{
-    fake_now += 1000;
-    frame(PM_HOST_HEARTBEAT, (const int32_t[]){0});
-    fw_poll(ctl);
-    if (c)
-        MEASURE(*c, fw_control_tick(ctl));
-    else
-        fw_control_tick(ctl);
-    for (int t = 0; t < 200; ++t)
-        fw_step_tick(ctl);
-}
-
 static uint32_t segments_of_running(void)
 {
     static fw_inspection in;
-    fw_inspect(ctl, &in);
+    fw_inspect(bench_ctl, &in);
     return in.has_next ? in.next.segments : in.move.segments;
 }
 
 static void bench_controller(void)
 {
-    fw_hal hal;
-    memset(&hal, 0, sizeof hal);
-    hal.can = (hal_can){0, can_send, can_receive, can_state};
-    hal.stepper = (hal_stepper){.set_dir = st_dir, .pulse = st_pulse, .enable = st_enable};
-    hal.inputs = (hal_inputs){0, in_limits, in_estop};
-    hal.clock = (hal_clock){0, clk_now};
-    hal.storage = (hal_storage){0, st_load, st_save};
-    const fw_config cfg = {1, 1000, 200000, NULL, NULL};
-    ctl = fw_init(&ctl_mem, &hal, &cfg);
-    /* Homed at the home pose without running the homing sequence (a benchmark shortcut: it
-     * needs switches), then enabled. */
-    if (!ctl || fw_testing_homed_at_home(ctl) != 0) {
+    if (bench_rig_start() != 0) {
         sh_puts("bench: controller did not start\n");
         return;
     }
-    frame(PM_ENABLE, (const int32_t[]){0});
-    fw_poll(ctl);
-    fw_control_tick(ctl);
+    fw_controller *const ctl = bench_ctl;
 
     /* Commit-to-first-setpoint: the commit's validation (the poll that takes it), for a 1 s and a
      * 5 s move from rest, then a 5 s move blended into the running 5 s one. */
@@ -264,10 +162,10 @@ static void bench_controller(void)
     for (int m = 0; m < 3; ++m) {
         if (m == 2) /* a second into the first 5 s move */
             for (int i = 0; i < 1000; ++i)
-                period(NULL);
-        stage(seq, moves[m].to);
+                bench_period(NULL);
+        bench_stage(seq, moves[m].to);
         uint32_t n;
-        frame(PM_MOVE_COMMIT, ((const int32_t[]){seq, 0, moves[m].ms}));
+        bench_queue(PM_MOVE_COMMIT, ((const int32_t[]){seq, 0, moves[m].ms}));
         MEASURE(n, fw_poll(ctl));
         ++seq;
         const uint32_t segs = segments_of_running();
@@ -280,7 +178,7 @@ static void bench_controller(void)
         unsigned k = 0;
         while (fw_state_of(ctl) == FW_STATE_MOVING) {
             uint32_t c;
-            period(&c);
+            bench_period(&c);
             if (k < MAX_SAMPLES && fw_state_of(ctl) == FW_STATE_MOVING)
                 samples[k++] = c;
         }
@@ -289,9 +187,40 @@ static void bench_controller(void)
     }
 }
 
+/* The costliest frame over the adversarial commits of frame_cases.c (docs/validation.md, "What one
+ * frame costs"), each from rest, its MOVE_COMMIT's handling measured whole. */
+static void bench_frames(void)
+{
+    if (bench_rig_start() != 0) {
+        sh_puts("bench: controller did not start\n");
+        return;
+    }
+    uint32_t worst = 0;
+    unsigned at = 0;
+    char answer = 0;
+    int reason = 0;
+    for (unsigned i = 0; i < bench_frame_case_count; ++i) {
+        char a;
+        int r;
+        const uint32_t n = bench_commit_cost(&bench_frame_cases[i], &a, &r);
+        if (n >= worst) {
+            worst = n;
+            at = i;
+            answer = a;
+            reason = r;
+        }
+    }
+    if (worst == UINT32_MAX)
+        sh_printf("frame_worst,4294967296\n# frame_worst: at least that (case %u of %u wrapped the counter)\n",
+                  at + 1, bench_frame_case_count);
+    else
+        sh_printf("frame_worst,%lu\n# frame_worst: case %u of %u (%s)\n", (unsigned long)worst, at + 1,
+                  bench_frame_case_count, answer == 'a' ? "accepted" : answer == 'r' ? proto_enum_name(proto_reason_names, reason) : "no answer");
+}
+
 int main(void)
 {
-    counter_start();
+    overhead = bench_counter_start();
     sh_printf("# instruction counts on the emulated Cortex-M4F (QEMU -icount shift=0), medians; read overhead %lu\n",
               (unsigned long)overhead);
     fw_param_set ps;
@@ -302,5 +231,6 @@ int main(void)
     bench_kinematics();
     bench_stepgen();
     bench_controller();
+    bench_frames();
     sh_exit(0);
 }

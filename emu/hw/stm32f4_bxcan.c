@@ -140,6 +140,7 @@ struct Stm32f4BxcanState {
     SysBusDevice parent_obj;
     MemoryRegion iomem;
     qemu_irq irq[4];
+    qemu_irq rx_out; /* BXCAN_OUT_RX: each frame taken, for an observer */
     Clock *pclk;
     CanBusClientState bus_client;
     CanBusState *canbus;
@@ -536,6 +537,8 @@ static void receive_frame(Stm32f4BxcanState *s, const qemu_can_frame *f)
         return;
     }
     const int q = hit.fifo;
+    qemu_set_irq(s->rx_out, (int)(id + 1u));
+    qemu_set_irq(s->rx_out, 0);
     Mailbox mb = {
         .ir = word,
         .dtr = (uint32_t)MIN(f->can_dlc, 8) | hit.fmi << 8,
@@ -887,6 +890,7 @@ static void bxcan_init(Object *obj)
     qdev_init_gpio_in_named(dev, rx_af_in, BXCAN_IN_RX_AF, 1);
     qdev_init_gpio_in_named(dev, tx_af_in, BXCAN_IN_TX_AF, 1);
     qdev_init_gpio_in_named(dev, bus_error_in, BXCAN_IN_BUS_ERROR, 1);
+    qdev_init_gpio_out_named(dev, &s->rx_out, BXCAN_OUT_RX, 1);
 }
 
 static Property bxcan_properties[] = {

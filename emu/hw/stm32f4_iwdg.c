@@ -35,7 +35,7 @@ OBJECT_DECLARE_SIMPLE_TYPE(Stm32f4IwdgState, STM32F4_IWDG)
 struct Stm32f4IwdgState {
     SysBusDevice parent_obj;
     MemoryRegion iomem;
-    qemu_irq reset;
+    qemu_irq reset, reload_out;
     QEMUTimer *expiry, *update;
     bool started, open;
     uint32_t pr, rlr, sr;            /* as written */
@@ -113,6 +113,7 @@ static void iwdg_write(void *opaque, hwaddr addr, uint64_t val, unsigned size)
         case 0xAAAA:
             if (s->started) {
                 reload(s);
+                qemu_irq_pulse(s->reload_out);
             }
             s->open = false;
             break;
@@ -179,6 +180,7 @@ static void iwdg_init(Object *obj)
     memory_region_init_io(&s->iomem, obj, &iwdg_ops, s, "stm32f4-iwdg", 0x400);
     sysbus_init_mmio(SYS_BUS_DEVICE(obj), &s->iomem);
     qdev_init_gpio_out_named(DEVICE(obj), &s->reset, IWDG_OUT_RESET, 1);
+    qdev_init_gpio_out_named(DEVICE(obj), &s->reload_out, IWDG_OUT_RELOAD, 1);
 }
 
 static Property iwdg_properties[] = {

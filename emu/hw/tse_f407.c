@@ -59,6 +59,9 @@ static void wire_rig(TseF407SocState *soc, DeviceState *rig)
                                 qdev_get_gpio_in_named(DEVICE(soc), SOC_IN_POWER, 0));
     qdev_connect_gpio_out_named(rig, RIG_OUT_CANERR, 0,
                                 qdev_get_gpio_in_named(soc->can1, BXCAN_IN_BUS_ERROR, 0));
+    /* What the rig observes for the figures: frames the controller takes, watchdog reloads. */
+    qdev_connect_gpio_out_named(soc->can1, BXCAN_OUT_RX, 0, qdev_get_gpio_in_named(rig, RIG_IN_CAN_RX, 0));
+    qdev_connect_gpio_out_named(soc->iwdg, IWDG_OUT_RELOAD, 0, qdev_get_gpio_in_named(rig, RIG_IN_FEED, 0));
 }
 
 static void tse_f407_init(MachineState *machine)

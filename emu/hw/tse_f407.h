@@ -59,9 +59,13 @@ static inline uint32_t tse_can_frame_bits(bool extended, bool rtr, unsigned len)
 #define BXCAN_IN_RX_AF "rx-af" /* the CAN RX pin's alternate function (from GPIO "af") */
 #define BXCAN_IN_TX_AF "tx-af"
 #define BXCAN_IN_BUS_ERROR "bus-error" /* level 1: the bus is held in error (the rig's canerr) */
+/* A frame taken into a receive FIFO, for an observer (the rig): pulsed to 1 + the frame's
+ * identifier (standard or extended), then back to 0. */
+#define BXCAN_OUT_RX "rx"
 
 /* ---- IWDG (stm32f4_iwdg.c) ---- */
 #define IWDG_OUT_RESET "reset" /* pulsed when the counter reaches 0 */
+#define IWDG_OUT_RELOAD "reload" /* pulsed at every reload (KR = 0xAAAA), for an observer (the rig) */
 
 /* ---- rig (tse_rig.c) ---- */
 #define RIG_IN_STEP "step"     /* 6 lines */
@@ -71,6 +75,8 @@ static inline uint32_t tse_can_frame_bits(bool extended, bool rtr, unsigned len)
 #define RIG_OUT_ESTOP "estop"   /* 1 line: the e-stop pin (1 = chain open) */
 #define RIG_OUT_POWER "power-cycle" /* pulsed by the `reset` request */
 #define RIG_OUT_CANERR "canerr"     /* level: `canerr on|off` */
+#define RIG_IN_CAN_RX "can-rx"      /* 1 line: bxCAN's BXCAN_OUT_RX (`firststep`) */
+#define RIG_IN_FEED "feed"          /* 1 line: the IWDG's reloads (`feedgap`) */
 
 /* ---- SoC (tse_f407_soc.c) ---- */
 #define SOC_IN_POWER "power-cycle" /* a pulse: RAM lost, power-on reset */

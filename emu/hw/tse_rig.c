@@ -16,6 +16,14 @@
  *
  * The slides keep their positions over resets and power cycles (`reset`): they are mechanics.
  *
+ * What the rig also observes, for the figures a test reports: the frames the controller takes
+ * from the bus (bxCAN's rx line) and the watchdog's reloads (the IWDG's reload line).
+ * `firststep` gives the virtual time the controller took the last frame with identifier mark-id
+ * (default 0x0D1: a MOVE_COMMIT to node 1, docs/protocol.md) and of the first STEP edge a driver
+ * took after it: a command's latency to motion.  `feedgap` gives the longest time between two
+ * reloads since the last `feedgap` (the image feeds the watchdog from its main loop's idle hook,
+ * so this is the longest pause of its main loop), and how many reloads there were.
+ *
  * SPDX-License-Identifier: GPL-2.0-or-later
  */
 #include "qemu/osdep.h"
@@ -77,7 +85,15 @@ struct TseRigState {
     unsigned line_len;
     bool line_overflow;
 
+    /* observations */
+    int64_t mark_t;       /* when the controller took the last marked frame (-1: none) */
+    int64_t mark_step_t;  /* the first STEP edge taken after it (-1: none yet) */
+    int64_t feed_t;       /* the last watchdog reload (-1: none) */
+    int64_t feed_gap;     /* the longest time between two reloads since the last `feedgap` */
+    uint64_t feeds;
+
     /* properties */
+    uint32_t mark_id;
     uint32_t steps_per_m;
     char *initial_m, *switch_m;
     uint32_t step_pulse_ns, dir_setup_ns;
@@ -146,6 +162,9 @@ static void step_in(void *opaque, int k, int level)
             }
         }
         sl->step_dir = dir ? 1 : -1;
+        if (s->mark_t >= 0 && s->mark_step_t < 0) {
+            s->mark_step_t = t;
+        }
         return;
     }
     /* Falling edge: the pulse is complete; a short one is missed. */
@@ -180,6 +199,30 @@ static void dir_in(void *opaque, int k, int level)
 static void enable_in(void *opaque, int n, int level)
 {
     TSE_RIG(opaque)->enable = level != 0;
+}
+
+/* bxCAN took a frame: level 1 + its identifier (then 0). */
+static void can_rx_in(void *opaque, int n, int level)
+{
+    TseRigState *s = opaque;
+    if (level > 0 && (uint32_t)(level - 1) == s->mark_id) {
+        s->mark_t = now_ns();
+        s->mark_step_t = -1;
+    }
+}
+
+static void feed_in(void *opaque, int n, int level)
+{
+    TseRigState *s = opaque;
+    if (!level) {
+        return;
+    }
+    const int64_t t = now_ns();
+    if (s->feed_t >= 0 && t - s->feed_t > s->feed_gap) {
+        s->feed_gap = t - s->feed_t;
+    }
+    s->feed_t = t;
+    ++s->feeds;
 }
 
 /* ---- the text interface ---- */
@@ -222,7 +265,7 @@ static void request(TseRigState *s, char *line)
     if (!strcmp(cmd, "slides") && argc == 1) {
         say(s, "slides");
         for (int k = 0; k < SLIDES; ++k) {
-            say(s, " %.6f", position(s, k));
+            say(s, " %.9f", position(s, k));
         }
         say(s, "\nok\n");
     } else if (!strcmp(cmd, "steps") && argc == 1) {
@@ -235,6 +278,12 @@ static void request(TseRigState *s, char *line)
         say(s, "time %" PRId64 "\nok\n", now_ns());
     } else if (!strcmp(cmd, "log") && argc == 1) {
         answer_log(s);
+    } else if (!strcmp(cmd, "firststep") && argc == 1) {
+        say(s, "firststep %" PRId64 " %" PRId64 "\nok\n", s->mark_t, s->mark_step_t);
+    } else if (!strcmp(cmd, "feedgap") && argc == 1) {
+        say(s, "feedgap %" PRId64 " %" PRIu64 "\nok\n", s->feed_gap, s->feeds);
+        s->feed_gap = 0;
+        s->feeds = 0;
     } else if (!strcmp(cmd, "estop") && argc == 2 && (!strcmp(argv[1], "open") || !strcmp(argv[1], "closed"))) {
         s->estop_open = !strcmp(argv[1], "open");
         update_outputs(s);
@@ -260,11 +309,13 @@ static void request(TseRigState *s, char *line)
         say(s, "ok\n");
     } else if (!strcmp(cmd, "estop") || !strcmp(cmd, "canerr") || !strcmp(cmd, "switch") ||
                !strcmp(cmd, "slides") || !strcmp(cmd, "steps") || !strcmp(cmd, "time") ||
-               !strcmp(cmd, "log") || !strcmp(cmd, "reset")) {
-        say(s, "error: %s: wrong arguments (slides | steps | time | log | reset | estop open|closed | "
-            "switch K open|closed|auto | canerr on|off)\n", cmd);
+               !strcmp(cmd, "log") || !strcmp(cmd, "reset") || !strcmp(cmd, "firststep") ||
+               !strcmp(cmd, "feedgap")) {
+        say(s, "error: %s: wrong arguments (slides | steps | time | log | firststep | feedgap | reset | "
+            "estop open|closed | switch K open|closed|auto | canerr on|off)\n", cmd);
     } else {
-        say(s, "error: unknown request '%s' (slides, steps, time, log, reset, estop, switch, canerr)\n", cmd);
+        say(s, "error: unknown request '%s' (slides, steps, time, log, firststep, feedgap, reset, estop, switch, "
+            "canerr)\n", cmd);
     }
 }
 
@@ -347,6 +398,7 @@ static void rig_realize(DeviceState *dev, Error **errp)
         s->slide[k].sw_sent = -2;
         s->slide[k].dir_change = INT64_MIN / 2;
     }
+    s->mark_t = s->mark_step_t = s->feed_t = -1;
     if (qemu_chr_fe_backend_connected(&s->chr)) {
         qemu_chr_fe_set_handlers(&s->chr, chr_can_read, chr_read, chr_event, NULL, s, NULL, true);
     }
@@ -361,6 +413,7 @@ static void rig_reset(DeviceState *dev)
         s->slide[k].sw_sent = -2;
     }
     s->estop_sent = -2;
+    s->feed_t = -1; /* a restart is not a pause of the main loop */
     update_outputs(s);
 }
 
@@ -371,6 +424,8 @@ static void rig_init(Object *obj)
     qdev_init_gpio_in_named(dev, step_in, RIG_IN_STEP, SLIDES);
     qdev_init_gpio_in_named(dev, dir_in, RIG_IN_DIR, SLIDES);
     qdev_init_gpio_in_named(dev, enable_in, RIG_IN_ENABLE, 1);
+    qdev_init_gpio_in_named(dev, can_rx_in, RIG_IN_CAN_RX, 1);
+    qdev_init_gpio_in_named(dev, feed_in, RIG_IN_FEED, 1);
     qdev_init_gpio_out_named(dev, s->sw_out, RIG_OUT_SWITCH, SLIDES);
     qdev_init_gpio_out_named(dev, &s->estop_out, RIG_OUT_ESTOP, 1);
     qdev_init_gpio_out_named(dev, &s->power_out, RIG_OUT_POWER, 1);
@@ -385,6 +440,7 @@ static Property rig_properties[] = {
     DEFINE_PROP_UINT32("step-pulse-ns", TseRigState, step_pulse_ns, 2500),
     DEFINE_PROP_UINT32("dir-setup-ns", TseRigState, dir_setup_ns, 5000),
     DEFINE_PROP_BOOL("miss-violations", TseRigState, miss_violations, true),
+    DEFINE_PROP_UINT32("mark-id", TseRigState, mark_id, 0x0D1),
     DEFINE_PROP_END_OF_LIST(),
 };
 

@@ -14,6 +14,7 @@
  * stop or fault can bring homing to rest at any moment. */
 #include "homing.h"
 
+#include "fw/joint_path.h"
 #include "steps.h"
 
 /* The release creep runs at this fraction of the homing speed, and at most half a step per control
@@ -75,7 +76,8 @@ static void homing_fault(fw_controller *c)
     c->tick.home.abort = true;
 }
 
-static void start_joint_move(fw_controller *c)
+/* False, with nothing started, when the joint move's path fails its check. */
+static bool start_joint_move(fw_controller *c)
 {
     fw_homing *h = &c->tick.home;
     int32_t now[6];
@@ -93,6 +95,12 @@ static void start_joint_move(fw_controller *c)
             longest = d;
     }
     stepgen_set_position(&c->sg, now); /* the zero: from here on steps count from s = 0 */
+    /* Validated as any move is before its first step (the parameter check has checked it from the
+     * switches themselves, fw_params_judge). */
+    tse_real where;
+    int scissor;
+    if (fw_joint_path_check(&c->tick.geom, c->tick.joint.from, &where, &scissor) != TSE_OK)
+        return false;
     const tse_real n = longest > TSE_R(0.0) ? longest : TSE_R(1.0);
     const tse_real jerk = c->tick.lim.slide_amax * c->tick.lim.plate_jmax / c->tick.lim.plate_amax;
     fw_profile_plan(&c->tick.joint.prof, longest > TSE_R(0.0) ? TSE_R(1.0) : TSE_R(0.0),
@@ -103,6 +111,7 @@ static void start_joint_move(fw_controller *c)
     c->tick.segments_run = 0;
     c->tick.stopping = false;
     c->tick.src = FW_SRC_JOINT;
+    return true;
 }
 
 typedef struct {
@@ -234,7 +243,9 @@ fw_homing_outcome fw_homing_tick(fw_controller *c)
     /* At rest: on to the home pose, or the end. */
     if (h->abort)
         return finish(c, false);
-    if (done)
-        start_joint_move(c);
+    if (done && !start_joint_move(c)) {
+        c->tick.pending_fault = FW_FAULT_HOMING;
+        return finish(c, false);
+    }
     return FW_HOMING_GOING;
 }

@@ -34,10 +34,48 @@ static tse_real stop_time(const fw_controller *c, tse_real share)
  * x in [0, 1] of along r(x)^2 + share (1 - cos 2 pi x) / 2: for along 0.95 and share 0.4 (a
  * move, planned within 95 % of the limits), 0.998 of the limit; for 0.9 and 0.45 (homing's
  * joint move), 0.972. */
+/* The share of slide_amax a trajectory's stop brakes with (its path is validated up to the limit
+ * itself: along 1, below). */
+#define TRAJ_STOP_SHARE TSE_R(0.45)
+
 static tse_real path_stop_time(const fw_controller *c, tse_real v_peak, tse_real share)
 {
     const tse_real T = TSE_R(2.0) * v_peak / (share * c->tick.lim.slide_amax);
     return T < MIN_STOP_TIME ? MIN_STOP_TIME : T;
+}
+
+/* The fastest a slide goes along the queued trajectory from the present over the next `span`
+ * seconds of path time: what each queued piece's validation measured (fw_traj_point.v_peak). */
+static tse_real traj_v_peak(const fw_controller *c, tse_real span)
+{
+    const fw_traj_queue *q = &c->tick.traj;
+    const uint64_t until = (uint64_t)((c->tick.tau + span) * TSE_R(1e6));
+    tse_real v = TSE_R(0.0);
+    for (unsigned i = 0; i < q->count; ++i) {
+        const fw_traj_point *p = &q->pts[(q->head + i) % FW_TRAJ_CAPACITY];
+        if (p->v_peak > v)
+            v = p->v_peak;
+        if (p->t_us >= until)
+            break;
+    }
+    return v;
+}
+
+/* A trajectory's stop ramp, sized as a move's (path_stop_time) from the fastest its slides go over
+ * the path time the ramp covers (half its length, and a stride more), not from the present speed:
+ * a path still accelerating goes on speeding up along the ramp (issue 24: braking at 1.3 times
+ * slide_amax).  The ramp's length and the span it covers grow together; a few rounds settle them. */
+static tse_real traj_stop_time(const fw_controller *c, tse_real share)
+{
+    const tse_real stride = (tse_real)FW_ACC_STRIDE / (tse_real)c->cfg.segment_hz;
+    tse_real T = stop_time(c, share);
+    for (int round = 0; round < 8; ++round) {
+        const tse_real longer = path_stop_time(c, traj_v_peak(c, TSE_R(0.5) * T + stride), share);
+        if (!(longer > T))
+            break;
+        T = longer;
+    }
+    return T;
 }
 
 /* The fastest a slide goes along homing's joint move: its cruise speed on the longest slide. */
@@ -136,7 +174,7 @@ void fw_motion_stop(fw_controller *c)
     else if (t->src == FW_SRC_MOVE)
         t->stop_T = path_stop_time(c, t->move.v_peak + (blending ? t->next.v_peak : TSE_R(0.0)), TSE_R(0.4));
     else
-        t->stop_T = stop_time(c, TSE_R(0.45));
+        t->stop_T = traj_stop_time(c, TRAJ_STOP_SHARE);
 }
 
 /* Path time of the next segment: on the planner's grid exactly while running, so execution
@@ -203,7 +241,7 @@ static void run_source(fw_controller *c)
         /* The host is falling behind: once less trajectory is queued than a stop needs, stop
          * along it while there is room, and latch the underrun. */
         const tse_real left = (tse_real)t->traj.end_us * TSE_R(1e-6) - t->tau;
-        if (left <= TSE_R(0.5) * stop_time(c, TSE_R(0.45)) + TSE_R(2.0) / (tse_real)c->cfg.segment_hz) {
+        if (left <= TSE_R(0.5) * traj_stop_time(c, TRAJ_STOP_SHARE) + TSE_R(2.0) / (tse_real)c->cfg.segment_hz) {
             t->pending_fault = FW_FAULT_UNDERRUN;
             fw_motion_stop(c);
         }

@@ -143,12 +143,22 @@ int fw_move_plan_by(fw_move *mv, const tse_geometry *g, const fw_limits *lim, co
     margin.slide_vmax *= LIMIT_MARGIN;
     margin.slide_amax *= LIMIT_MARGIN;
     fw_slide_worst worst = {0, false, TSE_R(0.0)};
-    for (int round = 0; round < MAX_STRETCH_ROUNDS; ++round) {
+    uint32_t work = 0;
+    for (int round = 0; round < MAX_STRETCH_ROUNDS && work < 2u * FW_VALIDATE_WORK; ++round) {
+        /* Counted before it is converted: a move of metres at micrometres a second has billions of
+         * segments, beyond a uint32_t and beyond any use. */
         const tse_real segs = tse_ceil(mv->prof.T * lim->segment_hz);
+        if (!(segs <= (tse_real)FW_MOVE_MAX_S * lim->segment_hz)) {
+            res->reason = FW_REASON_TOO_LONG;
+            res->status = TSE_OK; /* too long in time, not near a limit */
+            res->where = (tse_real)FW_MOVE_MAX_S;
+            return -1;
+        }
         mv->segments = segs < TSE_R(1.0) ? 1u : (uint32_t)segs;
         fw_validation val;
         if (validate(mv, g, &margin, q_from, &val, res) != 0)
             return -1;
+        work += fw_validation_work(&val);
         for (int k = 0; k < 6; ++k)
             mv->q_end[k] = val.q_end[k];
         const tse_real vr = val.v_ratio, ar = val.a_ratio;
@@ -177,8 +187,9 @@ int fw_move_plan_by(fw_move *mv, const tse_geometry *g, const fw_limits *lim, co
         fw_profile_stretch(&mv->prof, k);
         mv->stretch *= k;
     }
-    /* Still too fast after every round: refuse rather than exceed a limit, naming the last
-     * walk's worst slide. */
+    /* Still too fast after every round (or after as much validation as three rounds may do, which
+     * bounds a commit's time): refuse rather than exceed a limit, naming the last walk's worst
+     * slide. */
     fw_plan_timing(res, worst, LIMIT_MARGIN, lim);
     return -1;
 }

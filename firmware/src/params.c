@@ -2,6 +2,8 @@
 
 #include "fw/doc.h"
 #include "fw/types.h"
+#include "fw/joint_path.h"
+#include "tse/ik.h"
 
 /* Prototype defaults (paper, section VI; kinematics.md).  The slides: a 200-step motor at 1/64
  * microstepping on a 10 mm lead, 0.78 um per step, fine enough that rounding the six slides to
@@ -146,6 +148,39 @@ static fw_param_fault check_switches(const fw_param_set *s, const tse_params *p)
     return fault(-1, FW_RULE_NONE);
 }
 
+/* The home pose within its own margins, and homing's final move from the switches to it through
+ * valid poses only (fw/joint_path.h): otherwise homing ends where every move is refused, or
+ * carries the plate through poses the margins exist to keep it from. */
+static fw_param_fault check_home(const fw_param_set *s, const tse_params *p)
+{
+    tse_geometry g;
+    if (tse_geometry_init(&g, p) != TSE_PARAM_OK)
+        return fault(FP_L, FW_RULE_GEOMETRY); /* tse_params_check passed it: not expected */
+    tse_ik_result r;
+    const tse_status home = tse_ik(&g, g.home_pose, NULL, &r);
+    if (home != TSE_OK)
+        /* The margin that home fails, or the stroke or angle stops it needs. */
+        return fault(home == TSE_DEGENERATE ? FP_NU_MIN
+                     : home == TSE_SINGULAR ? FP_MU_MIN
+                     : home == TSE_STROKE   ? FP_S_MAX
+                                            : FP_ALPHA_MAX,
+                     FW_RULE_HOME_MARGINS);
+    /* Six switches at one height make a straight path for the plate (down, level), so the blame
+     * goes to the switch farthest from the others' mean. */
+    tse_real from[6], where, mean = TSE_R(0.0);
+    for (int k = 0; k < 6; ++k) {
+        from[k] = (tse_real)s->v[FP_HOME_SW_1 + k] * TSE_R(1e-6);
+        mean += from[k] / TSE_R(6.0);
+    }
+    int scissor, odd = 0;
+    for (int k = 1; k < 6; ++k)
+        if (tse_fabs(from[k] - mean) > tse_fabs(from[odd] - mean))
+            odd = k;
+    if (fw_joint_path_check(&g, from, &where, &scissor) != TSE_OK)
+        return fault(FP_HOME_SW_1 + odd, FW_RULE_HOMING_PATH);
+    return fault(-1, FW_RULE_NONE);
+}
+
 fw_param_fault fw_params_judge(const fw_param_set *s)
 {
     for (int i = 0; i < FP_COUNT; ++i)
@@ -160,7 +195,10 @@ fw_param_fault fw_params_judge(const fw_param_set *s)
         return fault(FP_S_MAX, FW_RULE_STROKE_ORDER);
     if (bad != TSE_PARAM_OK)
         return fault((int)kin_param[bad], FW_RULE_GEOMETRY);
-    return check_switches(s, &p);
+    const fw_param_fault sw = check_switches(s, &p);
+    if (sw.rule != FW_RULE_NONE)
+        return sw;
+    return check_home(s, &p);
 }
 
 int fw_params_check(const fw_param_set *s)

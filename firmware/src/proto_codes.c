@@ -47,6 +47,12 @@ const proto_code proto_param_rules[] = {
      "configuration fault)"},
     {FW_RULE_NOT_AT_REST, "not_at_rest",
      "the step generator was still running: parameters change only at rest (try again)"},
+    {FW_RULE_HOME_MARGINS, "home_margins",
+     "the home pose must pass its own margins (mu_min, nu_min) and stroke, or every move from it is "
+     "refused"},
+    {FW_RULE_HOMING_PATH, "homing_path",
+     "homing's final move, straight in slide space from the homing switches (home_sw_1..6) to the home "
+     "pose, must pass valid poses only (within the workspace and both margins)"},
     {0, 0, 0},
 };
 

@@ -44,6 +44,7 @@ const proto_enum_entry proto_reason_names[] = {
     {FW_REASON_TIMING, "timing"},
     {FW_REASON_ORDER, "order"},
     {FW_REASON_ENDED, "ended"},
+    {FW_REASON_TOO_LONG, "too_long"},
     {0, 0},
 };
 
@@ -121,21 +122,28 @@ const proto_def proto_table[PM_COUNT] = {
       {"reason", PF_U8, 2, 0, FW_REASON_COUNT - 1, "", 1.0, proto_reason_names, FW_DOC("why")},
       {"scissor", PF_U8, 3, 0, 3, "", 1.0, 0,
        FW_DOC("for kinematics, the first failing scissor (1..3); for timing, the scissor (1..3) of the slide "
-       "over its limit; 0 otherwise")},
+       "over its limit; for too_long with field 1, the scissor near whose limit the proof stopped; 0 "
+       "otherwise")},
       {"kin_status", PF_U8, 4, 0, TSE_STATUS_COUNT - 1, "", 1.0, proto_kin_status_names,
-       FW_DOC("for kinematics, the kinematic status of the first failing point; 0 otherwise")},
+       FW_DOC("for kinematics, the kinematic status of the first failing point; for too_long with field 1, "
+       "the limit the proof could not show the path clear of; 0 otherwise")},
       {"field", PF_U8, 5, 0, 255, "", 1.0, 0,
        FW_DOC("for range, the index of the offending field (0 = its first, counting in byte order); for "
        "param_unknown, param_range and param_set, the parameter id (255 for an id above 255); for "
        "state, the controller's state when it refused (a state value as in STATUS); for timing, the "
        "slide over its limit, 1..6 for A1, B1, A2, B2, A3, B3, plus 16 times the limit it is against "
        "(slide limit codes: 0 slide_vmax, 1 slide_amax, the acceleration, 2 the step generator's speed "
-       "limit, when lower than slide_vmax)")},
+       "limit, when lower than slide_vmax); for too_long, 0 for a move that would last longer than a "
+       "move may (its speed too slow, or its duration too long once stretched to the slide limits), 1 "
+       "for a move too long to prove within one frame where its path comes near a limit of the "
+       "workspace (scissor and kin_status name the limit)")},
       {"where", PF_U16, 6, 0, 65535, "per mille", 1.0, 0,
        FW_DOC("for kinematics, the position of the first failing point along the path (0..1000); for "
        "timing, the demand against the limit field names, per mille of that limit as in effect "
        "(1000 = at the limit, 1350 = 35 % over; capped at 65535); for param_set, the rule the set "
-       "breaks (param_set rule codes; 0 from a controller that does not say)")}},
+       "breaks (param_set rule codes; 0 from a controller that does not say); for too_long, with "
+       "field 0 the longest a move may last in s (3600), with field 1 the position along the path "
+       "(0..1000) where the proof stopped")}},
      FW_DOC("Every refused command gets one. Nothing of a refused command is applied. For order, field is the "
      "sequence number the running trajectory expects next. For ended, field is how the row's trajectory "
      "ended (a traj_end value: 0 none, no such trajectory ran; 1 done; 2 stop; 3 fault) plus 16 times "
@@ -177,7 +185,7 @@ const proto_def proto_table[PM_COUNT] = {
     {PM_MOVE_COMMIT, 0x0D, "MOVE_COMMIT", PROTO_TO_CONTROLLER, 6, 3,
      {SEQ(0),
       {"kind", PF_U8, 1, 0, 1, "", 1.0, proto_move_kind_names, FW_DOC("what value gives")},
-      {"value", PF_U32, 2, 1, 3600000, "ms or um/s", 1.0, 0,
+      {"value", PF_U32, 2, 1, FW_MOVE_MAX_S * 1000, "ms or um/s", 1.0, 0,
        FW_DOC("for kind duration, the move's duration in ms; for kind speed, the plate's speed in um/s")}},
      FW_DOC("Move to the staged pose of this sequence number, straight in position with the orientation "
      "interpolated. Applied only if all three parts of this sequence arrived and it is newer than "

@@ -1,5 +1,14 @@
 #include "fw/reject.h"
 
+/* A position along the path, u in 0..1, in per mille: clamped before it is converted (a NaN to
+ * 0), for a conversion out of an integer's range is undefined. */
+static int32_t per_mille(tse_real u)
+{
+    if (!(u > TSE_R(0.0)))
+        return 0;
+    return u >= TSE_R(1.0) ? 1000 : (int32_t)(u * TSE_R(1000.0) + TSE_R(0.5));
+}
+
 void fw_reject_values(uint8_t function, uint8_t seq, fw_reason reason, uint8_t field,
                       const fw_plan_result *why, int32_t v[PROTO_MAX_FIELDS])
 {
@@ -7,11 +16,7 @@ void fw_reject_values(uint8_t function, uint8_t seq, fw_reason reason, uint8_t f
     if (why && reason == FW_REASON_KINEMATICS) {
         scissor = why->scissor;
         status = why->status;
-        where = (int32_t)(why->where * TSE_R(1000.0) + TSE_R(0.5));
-        if (where > 1000)
-            where = 1000;
-        if (where < 0)
-            where = 0;
+        where = per_mille(why->where);
     } else if (why && reason == FW_REASON_TIMING) {
         scissor = why->scissor;
         fld = why->slide + FW_REJECT_LIMIT * (int32_t)(why->accel ? FW_LIMIT_SLIDE_AMAX : why->limit);
@@ -19,6 +24,13 @@ void fw_reject_values(uint8_t function, uint8_t seq, fw_reason reason, uint8_t f
         /* Capped to the field, a NaN included: a value out of range would not encode, and the
          * refusal would go unanswered. */
         where = pm < TSE_R(65535.0) ? (pm > TSE_R(0.0) ? (int32_t)pm : 0) : 65535;
+    } else if (why && reason == FW_REASON_TOO_LONG && why->status == TSE_OK) {
+        where = FW_MOVE_MAX_S; /* field 0: longer than a move may last */
+    } else if (why && reason == FW_REASON_TOO_LONG) {
+        fld = 1; /* too long to prove near the limit named */
+        scissor = why->scissor;
+        status = why->status;
+        where = per_mille(why->where);
     }
     v[0] = function & 0x7F;
     v[1] = seq;

@@ -8,6 +8,7 @@ static void make_point(fw_traj_point *p, const tse_real pose[6], uint64_t t_us, 
 {
     for (int k = 0; k < 6; ++k)
         p->pose[k] = pose[k];
+    p->v_peak = TSE_R(0.0);
     fw_quat_from_rpy(pose[3], pose[4], pose[5], p->q0);
     /* Keep successive quaternions on one hemisphere so that slerp takes the short way. */
     if (near_q) {
@@ -96,7 +97,13 @@ int fw_traj_check_point(const fw_traj_check *t, const tse_geometry *g, const fw_
             res->where = (tse_real)(tau - t->tail.t_us) / (tse_real)dt_us;
             return -1;
         }
-        fw_slide_check_feed(chk, r.q, (tse_real)(tau - t_prev) * TSE_R(1e-6));
+        const tse_real dt = (tse_real)(tau - t_prev) * TSE_R(1e-6);
+        for (int j = 0; j < 6 && dt > TSE_R(0.0); ++j) {
+            const tse_real v = tse_fabs(r.q[j] - chk->q[j]) / dt;
+            if (v > p->v_peak)
+                p->v_peak = v;
+        }
+        fw_slide_check_feed(chk, r.q, dt);
         t_prev = tau;
         if (at_point) {
             ++k;

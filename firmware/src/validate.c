@@ -9,15 +9,22 @@ static void copy6(tse_real dst[6], const tse_real src[6])
         dst[k] = src[k];
 }
 
-static void refuse(const fw_move *mv, tse_real t, uint32_t segment, const tse_ik_result *r, fw_plan_result *res)
+/* A KINEMATICS refusal at segment `segment` (ending at t), for status and scissor. */
+static void refuse_at(const fw_move *mv, tse_real t, uint32_t segment, tse_status status, int scissor,
+                      fw_plan_result *res)
 {
     tse_real u, du, ddu;
     fw_profile_eval(&mv->prof, t, &u, &du, &ddu);
     res->reason = FW_REASON_KINEMATICS;
-    res->status = r->status;
-    res->scissor = r->scissor;
+    res->status = status;
+    res->scissor = scissor;
     res->segment = segment;
     res->where = u;
+}
+
+static void refuse(const fw_move *mv, tse_real t, uint32_t segment, const tse_ik_result *r, fw_plan_result *res)
+{
+    refuse_at(mv, t, segment, r->status, r->scissor, res);
 }
 
 int fw_validate_per_segment(const fw_move *mv, const tse_geometry *g, const fw_limits *lim,
@@ -28,6 +35,7 @@ int fw_validate_per_segment(const fw_move *mv, const tse_geometry *g, const fw_l
     v->pieces = 0;
     v->solves = 0;
     v->per_segment = true;
+    v->unproven = false;
     tse_real t_prev = TSE_R(0.0);
     for (uint32_t s = 1; s <= mv->segments; ++s) {
         if (fw_work_point()) {
@@ -64,6 +72,14 @@ static bool in_box(const tse_enclosure *e, const tse_real q[6])
             return false;
     return true;
 }
+
+/* Successes in a row at one piece length before the next piece is tried at twice it. */
+#define GROW_AFTER 3u
+/* Pieces between two looks ahead for a failing segment (scan_ahead) while pieces fail checks. */
+#define SCAN_EVERY 16u
+/* The proof's work once the move is known to be refused (its end pose, or a segment ahead, fails):
+ * the proof only places the first failure, which bisection then finds from where it stopped. */
+#define REFUSAL_WORK (32u * FW_PIECE_WORK)
 
 /* Relative slack allowed between a piece's timing bound and the largest speed or acceleration
  * actually met so far, before the piece is halved to tighten it. */
@@ -161,6 +177,14 @@ static void keep_box(box6 *b, const tse_enclosure *e)
     copy6(b->hi, e->q_hi);
 }
 
+static bool box_holds(const box6 *b, const tse_real q[6])
+{
+    for (int k = 0; k < 6; ++k)
+        if (!(q[k] >= b->lo[k] && q[k] <= b->hi[k]))
+            return false;
+    return true;
+}
+
 /* Whether two boxes overlap in every slide: the same branch passes from one piece to the next.
  * Two solutions of one scissor for one ball joint lie a scissor's size apart, boxes micrometres
  * to millimetres wide: overlapping boxes hold the same one. */
@@ -172,10 +196,59 @@ static bool boxes_meet(const box6 *a, const tse_enclosure *b)
     return true;
 }
 
-/* Returns 0 (valid), -1 (refused, *res filled) or 1 (not proven: the per-segment walk decides).
+/* Where a proof stopped short of a verdict (prove returns 1), for settle(). */
+typedef struct {
+    uint32_t at;          /* the last segment reached along the branch: passes (0: the start) */
+    tse_real q[6];        /* slides on the branch there, or near it: a seed for what lies ahead */
+    tse_status why;       /* what the proof could not get past (the enclosure's status) */
+    int why_scissor;
+    uint32_t fail;        /* a later segment known to fail (0: none known) */
+    tse_status fail_status;
+    int fail_scissor;
+    uint32_t fail_from;   /* a segment before it that passes, at or after `at` once stalled, */
+    tse_real fail_q[6];   /* with its slides: where bisection starts */
+} stall;
+
+static void stall_at(stall *st, uint32_t at, const tse_real q[6], tse_status why, int scissor)
+{
+    st->at = at;
+    copy6(st->q, q);
+    st->why = why;
+    st->why_scissor = scissor;
+}
+
+/* Segments lo + 1, lo + 3, lo + 7, ... before the end, each solved from the one before as the walk
+ * would (from q, slides on the branch at lo): the first that fails goes into st->fail (true).  A
+ * proof slows down near a limit, so a failure, if the path has one there, is close ahead. */
+static bool scan_ahead(const fw_move *mv, const tse_geometry *g, const fw_limits *lim, uint32_t lo,
+                       const tse_real q[6], stall *st, fw_validation *v)
+{
+    tse_real seed[6];
+    copy6(seed, q);
+    for (uint32_t d = 1u; lo + d < mv->segments; d *= 2u) {
+        tse_real pose[6];
+        tse_ik_result r;
+        fw_move_pose(mv, fw_move_segment_time(mv, lim, lo + d), pose);
+        ++v->solves;
+        if (tse_ik(g, pose, seed, &r) != TSE_OK) {
+            st->fail = lo + d;
+            st->fail_status = r.status;
+            st->fail_scissor = r.scissor;
+            st->fail_from = lo;
+            copy6(st->fail_q, seed);
+            return true;
+        }
+        lo += d;
+        copy6(seed, r.q);
+    }
+    return false;
+}
+
+/* Returns 0 (valid), -1 (refused, *res filled) or 1 (stalled: *st says where; settle() decides).
  * Kept out of line so that the stack holds either this walk or the per-segment one, not both. */
 static __attribute__((noinline)) int prove(const fw_move *mv, const tse_geometry *g, const fw_limits *lim,
-                                           const tse_real q_from[6], fw_validation *v, fw_plan_result *res)
+                                           const tse_real q_from[6], fw_validation *v, fw_plan_result *res,
+                                           stall *st)
 {
     const uint32_t n = mv->segments;
     /* The poses' rounding, for the ball joints: a few units in the last place of the position and
@@ -194,40 +267,72 @@ static __attribute__((noinline)) int prove(const fw_move *mv, const tse_geometry
         piece.omega[k] = mv->omega[k];
     }
     piece.pad = pad;
+    tse_real pose[6], q_start[6], q_first[6], seed[6];
+    tse_ik_result r;
+    v->solves = 3;
+    v->pieces = 0;
+    v->per_segment = false;
+    v->unproven = false;
+    stall_at(st, 0, q_from, TSE_SINGULAR, 1);
+    st->fail = 0;
+
+    /* The end pose first: one the solver refuses makes the move a refusal wherever the path first
+     * fails, so the pieces need not be cut short for tight timing bounds, only for the proof. */
+    fw_move_pose(mv, mv->prof.T, pose);
+    bool refusing = tse_ik(g, pose, q_from, &r) != TSE_OK;
+    if (refusing) {
+        st->fail = n;
+        st->fail_status = r.status;
+        st->fail_scissor = r.scissor;
+        st->fail_from = 0;
+        copy6(st->fail_q, q_from);
+    }
 
     /* The slides the move starts from may differ from the start pose's solution (by the solver's
      * rounding, or more): the per-segment walk sees that gap in its first setpoints, so it is
      * measured here as that walk measures it.  The first segment's speed is its setpoint's
      * distance from q_from; and setpoints before the start hold q_from, not the branch's start,
-     * which moves every second difference over the first strides by at most the gap. */
-    tse_real pose[6], q_start[6], q_first[6], seed[6];
-    tse_ik_result r;
-    v->solves = 2;
-    v->pieces = 0;
-    fw_move_pose(mv, TSE_R(0.0), pose);
-    if (tse_ik(g, pose, q_from, &r) != TSE_OK)
-        return 1;
-    copy6(q_start, r.q);
+     * which moves every second difference over the first strides by at most the gap.  The first
+     * segment is solved as the walk solves it, so a refusal there is the walk's. */
     const tse_real t_first = fw_move_segment_time(mv, lim, 1u);
     fw_move_pose(mv, t_first, pose);
-    if (tse_ik(g, pose, q_from, &r) != TSE_OK)
-        return 1;
+    if (tse_ik(g, pose, q_from, &r) != TSE_OK) {
+        refuse(mv, t_first, 1u, &r, res);
+        return -1;
+    }
     copy6(q_first, r.q);
+    fw_move_pose(mv, TSE_R(0.0), pose);
+    if (tse_ik(g, pose, q_from, &r) != TSE_OK) {
+        stall_at(st, 1u, q_first, r.status, r.scissor);
+        return 1;
+    }
+    copy6(q_start, r.q);
     copy6(seed, q_start);
 
     /* Pieces from the start to the end, each as long as can be proven: halved on a failure,
-     * doubled after a success. */
+     * doubled after GROW_AFTER successes in a row (a length that has just failed is likely to fail
+     * again soon: doubling after every success would spend every other try on it). */
     timing tm;
     for (int k = 0; k < 6; ++k)
         tm.v[k] = tm.a[k] = TSE_R(0.0);
     tm.met_v = tm.met_a = TSE_R(0.0);
     box6 prev;
     bool have_prev = false;
-    uint32_t s0 = 0, len = n;
+    uint32_t s0 = 0, len = n, streak = 0, scanned = 0, longest = 0;
+    /* The proof's share of the work (fw_validation_work): a move short enough to walk keeps the
+     * rest for its walk. */
+    uint32_t budget = refusing                ? REFUSAL_WORK
+                      : n <= FW_VALIDATE_WALK ? FW_VALIDATE_WORK - FW_VALIDATE_WALK
+                                              : FW_VALIDATE_WORK;
     while (s0 < n) {
         if (fw_work_point()) {
             res->reason = FW_REASON_STATE; /* stopped from outside (fw/work.h) */
             return -1;
+        }
+        if (fw_validation_work(v) >= budget) {
+            st->at = s0;
+            copy6(st->q, seed); /* the last piece's centre, on the branch that passes at s0 */
+            return 1;
         }
         const uint32_t s1 = n - s0 > len ? s0 + len : n;
         const tse_real t0 = fw_move_segment_time(mv, lim, s0), t1 = fw_move_segment_time(mv, lim, s1);
@@ -243,49 +348,76 @@ static __attribute__((noinline)) int prove(const fw_move *mv, const tse_geometry
         ++v->solves;
         const bool solved = tse_ik(g, pose, seed, &r) == TSE_OK;
         bool proven = solved && tse_ik_enclose(g, &piece, pose, &r, &e);
+        /* The chain of boxes follows one branch from the start pose's solution. */
+        const bool chained = solved && e.enclosed &&
+                             (have_prev ? boxes_meet(&prev, &e) : in_box(&e, q_start) && in_box(&e, q_first));
         piece_timing pt;
         if (proven) {
             pt = piece_bounds(&tm, &e, mv, lim, t0, t1, ud_c, udd_c);
-            if (too_loose(&tm, &pt))
+            if (!chained || (!refusing && too_loose(&tm, &pt)))
                 proven = false;
+        }
+        /* Pieces failing a check of the contract (not their timing) at an eighth of the longest
+         * proven: the proof is creeping up on a limit.  Every so often a look ahead: a failing
+         * segment there makes this a refusal, whose first failure bisection finds. */
+        if (!refusing && !(solved && e.proven) && 8u * (s1 - s0) < longest && v->pieces >= scanned + SCAN_EVERY) {
+            scanned = v->pieces;
+            if (scan_ahead(mv, g, lim, s0, seed, st, v)) {
+                refusing = true;
+                if (budget > fw_validation_work(v) + REFUSAL_WORK)
+                    budget = fw_validation_work(v) + REFUSAL_WORK;
+            }
         }
         if (!proven && s1 - s0 > 1) {
             len = (s1 - s0) / 2;
+            streak = 0;
             continue;
         }
-        copy6(seed, r.q);
         if (!proven) {
             /* One segment that cannot be proven as a whole: its end is checked as the
-             * per-segment walk checks it, its speeds bounded from the enclosure alone. */
-            if (!solved || !e.enclosed)
-                return 1;
+             * per-segment walk checks it (from the centre's slides where there are some), its
+             * speeds bounded from the enclosure alone, where there is one. */
+            const bool enclosed = solved && e.enclosed;
+            if (enclosed)
+                copy6(seed, r.q);
+            const tse_status why = solved ? e.status : r.status;
+            const int why_scissor = solved ? e.scissor : r.scissor;
             fw_move_pose(mv, t1, pose);
             ++v->solves;
             if (tse_ik(g, pose, seed, &r) != TSE_OK) {
                 refuse(mv, t1, s1, &r, res);
                 return -1;
             }
-            if (!in_box(&e, r.q))
+            if (!enclosed || !chained || !in_box(&e, r.q)) {
+                stall_at(st, s1, r.q, why, why_scissor);
                 return 1;
+            }
             pt = piece_bounds(&tm, &e, mv, lim, t0, t1, ud_c, udd_c);
+        } else {
+            copy6(seed, r.q);
         }
-        /* The chain of boxes follows one branch from the start pose's solution. */
-        if (have_prev ? !boxes_meet(&prev, &e) : !(in_box(&e, q_start) && in_box(&e, q_first)))
-            return 1;
         account(&tm, &pt);
         keep_box(&prev, &e);
         have_prev = true;
+        if (s1 - s0 > longest)
+            longest = s1 - s0;
         s0 = s1;
-        len = len > n / 2 ? n : 2 * len;
+        if (++streak >= GROW_AFTER) {
+            streak = 0;
+            len = len > n / 2 ? n : 2 * len;
+        }
     }
     /* The end pose, as execution's last setpoint: the commanded pose itself. */
     fw_move_pose(mv, mv->prof.T, pose);
     ++v->solves;
-    if (tse_ik(g, pose, seed, &r) != TSE_OK || !have_prev)
+    if (tse_ik(g, pose, seed, &r) != TSE_OK) {
+        refuse(mv, mv->prof.T, n, &r, res);
+        return -1;
+    }
+    if (!have_prev || !(box_holds(&prev, r.q))) {
+        stall_at(st, n, r.q, TSE_SINGULAR, 1);
         return 1;
-    for (int k = 0; k < 6; ++k)
-        if (!(r.q[k] >= prev.lo[k] && r.q[k] <= prev.hi[k]))
-            return 1;
+    }
     copy6(v->q_end, r.q);
     const tse_real span = (tse_real)FW_ACC_STRIDE / lim->segment_hz;
     uint8_t v_slide = 0, a_slide = 0;
@@ -313,14 +445,78 @@ static __attribute__((noinline)) int prove(const fw_move *mv, const tse_geometry
     return 0;
 }
 
+/* A segment between `lo` (which passes, with slides q) and `hi` (which fails with status and
+ * scissor) that fails with the one before it passing, found by bisection, as the per-segment walk
+ * solves each from the one before: the walk's first failure when the path crosses out of the
+ * workspace once between the two. */
+static void bisect(const fw_move *mv, const tse_geometry *g, const fw_limits *lim, uint32_t lo, tse_real q[6],
+                   uint32_t hi, tse_status status, int scissor, fw_validation *v, fw_plan_result *res)
+{
+    while (hi - lo > 1u) {
+        const uint32_t mid = lo + (hi - lo) / 2u;
+        tse_real pose[6];
+        tse_ik_result r;
+        fw_move_pose(mv, fw_move_segment_time(mv, lim, mid), pose);
+        ++v->solves;
+        if (tse_ik(g, pose, q, &r) == TSE_OK) {
+            lo = mid;
+            copy6(q, r.q);
+        } else {
+            hi = mid;
+            status = r.status;
+            scissor = r.scissor;
+        }
+    }
+    refuse_at(mv, fw_move_segment_time(mv, lim, hi), hi, status, scissor, res);
+}
+
+/* After a stalled proof: a segment known to fail ahead, or one found at doubling distances from the
+ * stall (a proof stalls near a limit, so a failure, if any, is likely close), settles it as a
+ * refusal at the first failing segment bisection finds (returns -1).  Otherwise 1: the path's
+ * sampled segments pass and only the proof could not finish. */
+static int settle(const fw_move *mv, const tse_geometry *g, const fw_limits *lim, stall *st, fw_validation *v,
+                  fw_plan_result *res)
+{
+    /* Bisection starts from the later of the stall and the last segment the scan passed. */
+    if (st->fail != 0 && st->fail_from < st->at && st->at < st->fail) {
+        st->fail_from = st->at;
+        copy6(st->fail_q, st->q);
+    }
+    if (st->fail == 0 && !scan_ahead(mv, g, lim, st->at, st->q, st, v))
+        return 1;
+    bisect(mv, g, lim, st->fail_from, st->fail_q, st->fail, st->fail_status, st->fail_scissor, v, res);
+    return -1;
+}
+
+uint32_t fw_validation_work(const fw_validation *v)
+{
+    return v->solves + (FW_PIECE_WORK - 1u) * v->pieces;
+}
+
 int fw_validate(const fw_move *mv, const tse_geometry *g, const fw_limits *lim, const tse_real q_from[6],
                 fw_validation *v, fw_plan_result *res)
 {
-    const int rc = prove(mv, g, lim, q_from, v, res);
+    stall st;
+    int rc = prove(mv, g, lim, q_from, v, res, &st);
     if (rc <= 0)
         return rc;
-    const uint32_t tried = v->pieces;
-    const int walked = fw_validate_per_segment(mv, g, lim, q_from, v, res);
-    v->pieces = tried;
-    return walked;
+    rc = settle(mv, g, lim, &st, v, res);
+    if (rc < 0)
+        return rc;
+    const uint32_t tried = v->pieces, solves = v->solves;
+    if (mv->segments <= FW_VALIDATE_WALK) {
+        rc = fw_validate_per_segment(mv, g, lim, q_from, v, res);
+        v->pieces = tried;
+        v->solves += solves;
+        return rc;
+    }
+    /* Too long to walk within a frame: refused TOO_LONG where the proof stalled, naming the limit it
+     * could not prove the path clear of (the path comes closer to it than the proof resolves). */
+    const uint32_t at = st.at < mv->segments ? st.at + 1u : mv->segments;
+    refuse_at(mv, fw_move_segment_time(mv, lim, at), at, st.why, st.why_scissor, res);
+    res->reason = FW_REASON_TOO_LONG;
+    if (res->status == TSE_OK)
+        res->status = TSE_SINGULAR; /* TSE_OK names a move too long in time */
+    v->unproven = true;
+    return -1;
 }

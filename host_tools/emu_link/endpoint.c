@@ -1,4 +1,4 @@
-#define _DEFAULT_SOURCE
+#define _GNU_SOURCE /* cfmakeraw */
 #include "endpoint.h"
 
 #include <errno.h>
@@ -20,11 +20,12 @@ int endpoint_open(const char *path)
         struct sockaddr_un a;
         memset(&a, 0, sizeof a);
         a.sun_family = AF_UNIX;
-        if (strlen(path) >= sizeof a.sun_path) {
+        const size_t n = strlen(path);
+        if (n >= sizeof a.sun_path) {
             errno = ENAMETOOLONG;
             return -1;
         }
-        strcpy(a.sun_path, path);
+        memcpy(a.sun_path, path, n + 1);
         const int fd = socket(AF_UNIX, SOCK_STREAM, 0);
         if (fd < 0)
             return -1;

@@ -8,7 +8,7 @@
  * is touched (exit 2 naming what is wrong); the answer's lines are printed, and the exit status is
  * 0 for `ok`, 1 for `error: WHY` (WHY on stderr) or a channel that cannot be used, 4 when no
  * answer came in time. */
-#define _DEFAULT_SOURCE
+#define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <errno.h>
 #include <poll.h>
 #include <stdio.h>
@@ -26,6 +26,10 @@ static const char *const help =
     "  steps                       the six step counts\n"
     "  time                        the emulator's virtual time, ns\n"
     "  log                         what the rig flagged (short STEP pulses, DIR set-up), one line each\n"
+    "  firststep                   when the controller took the last MOVE_COMMIT, and the first STEP\n"
+    "                              edge after it (virtual ns; -1: none)\n"
+    "  feedgap                     the longest time between two watchdog reloads (the longest pause\n"
+    "                              of the image's main loop) since the last feedgap, and how many\n"
     "  estop open|closed           the e-stop chain\n"
     "  switch K open|closed|auto   slide K's (1..6) homing switch forced, or from its position\n"
     "  canerr on|off               the bus held in error (bus-off), or released\n"
@@ -47,7 +51,7 @@ static int one_of(const char *s, const char *a, const char *b, const char *c)
 static int check(int n, char **w)
 {
     const char *r = w[0];
-    if (one_of(r, "slides", "steps", "time") || one_of(r, "log", "reset", NULL))
+    if (one_of(r, "slides", "steps", "time") || one_of(r, "log", "reset", NULL) || one_of(r, "firststep", "feedgap", NULL))
         return n == 1 ? 0 : usage_error("takes no argument", r);
     if (!strcmp(r, "estop"))
         return n == 2 && one_of(w[1], "open", "closed", NULL) ? 0 : usage_error("estop takes open or closed", NULL);
@@ -92,6 +96,14 @@ int main(int argc, char **argv)
     const int bad = check(argc - i, argv + i);
     if (bad)
         return bad;
+    char req[128];
+    size_t used = 0;
+    for (int k = i; k < argc; ++k) {
+        const int w = snprintf(req + used, sizeof req - used, "%s%s", argv[k], k + 1 < argc ? " " : "\n");
+        if (w < 0 || (size_t)w >= sizeof req - used)
+            return usage_error("the request is too long", argv[i]);
+        used += (size_t)w;
+    }
     if (!path || !*path)
         return usage_error("no rig channel: give --rig PATH or set TSE_RIG", NULL);
     const int fd = endpoint_open(path);
@@ -104,17 +116,12 @@ int main(int argc, char **argv)
         if (read(fd, buf, sizeof buf) <= 0)
             break;
 
-    char req[128] = "";
-    for (int k = i; k < argc; ++k) {
-        strcat(req, argv[k]);
-        strcat(req, k + 1 < argc ? " " : "\n");
-    }
     if (endpoint_write_all(fd, req, strlen(req)) != 0)
         return fprintf(stderr, "tse-rig: cannot write to the rig channel %s: %s\n", path, strerror(errno)), 1;
 
     /* The answer: lines up to "ok" or "error: ...". */
     const double end = now_s() + timeout;
-    char line[512];
+    char line[512] = "";
     size_t len = 0;
     for (;;) {
         const double left = end - now_s();

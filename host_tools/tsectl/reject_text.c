@@ -108,6 +108,20 @@ const char *reject_text(const proto_message *r, char *buf, size_t cap)
                  "path to it, leaves the workspace with its margins; 'tse-kin ik' shows the pose's status)",
                  cmd, scissor, proto_enum_name(proto_kin_status_names, kin), where / 10.0);
         break;
+    case FW_REASON_TOO_LONG:
+        if (field == 0)
+            snprintf(buf, cap,
+                     "rejected: too_long: %s: the move would last longer than the %d s a move may (its speed too "
+                     "slow, or its duration too long once stretched to the slide limits): ask a faster speed or a "
+                     "shorter duration, or split the move",
+                     cmd, where);
+        else
+            snprintf(buf, cap,
+                     "rejected: too_long: %s: the path comes so near a limit (scissor %d %s) at %.1f%% of its "
+                     "length that the controller cannot check so long a move within one frame: split it into "
+                     "shorter moves, or keep the path farther from that limit",
+                     cmd, scissor, proto_enum_name(proto_kin_status_names, kin), where / 10.0);
+        break;
     case FW_REASON_TIMING: {
         const int limit = field / FW_REJECT_LIMIT, slide = field % FW_REJECT_LIMIT;
         const double ratio = where / 1000.0;

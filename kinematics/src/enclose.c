@@ -105,10 +105,10 @@ typedef struct {
     tse_real rho;     /* the ball joint's travel over the piece (joint_motion's) */
 } scissor_box;
 
-/* One scissor over the piece: encloses its solution (returns 1), sets *proven when the box passes
- * the scissor's checks, and bounds the slides' derivatives along u. */
+/* One scissor over the piece: encloses its solution (returns 1), sets *failed to the first check
+ * the box fails (TSE_OK when it passes them all), and bounds the slides' derivatives along u. */
 static int enclose_scissor(const tse_geometry *g, int i, const tse_real C[3], const tse_real s[2],
-                           const joint_motion *jm, scissor_box *box, int *proven, tse_real dq[2],
+                           const joint_motion *jm, scissor_box *box, tse_status *failed, tse_real dq[2],
                            tse_real ddq[2], tse_real dq_c[2], tse_real ddq_c[2])
 {
     const tse_scissor_frame *f = &g->sc[i];
@@ -204,11 +204,15 @@ static int enclose_scissor(const tse_geometry *g, int i, const tse_real C[3], co
     const tse_real r2lo = mig(W10) * mig(W10) + mig(W11) * mig(W11);
     const tse_real row_lo = (r1lo < r2lo ? r1lo : r2lo) * (TSE_R(1.0) - WIDEN);
     const tse_real mu_lo = det_lo / tse_sqrt(n1 * n2) * (TSE_R(1.0) - WIDEN);
-    *proven = d[2] - rho > TSE_R(0.0) && w2 - w2r >= g->w_lo * g->w_lo && w2 + w2r <= g->w_hi * g->w_hi &&
-              sa - ca >= g->p.s_min && sa + ca <= g->p.s_max && sb - cb >= g->p.s_min &&
-              sb + cb <= g->p.s_max && det_lo > TSE_R(0.0) &&
-              det_lo * det_lo >= mu_min * mu_min * n1 * n2 * (TSE_R(1.0) + WIDEN) &&
-              mu_lo * (mu_lo - mu_min) * row_lo >= TSE_R(4.0) * g->mu_guard * (TSE_R(1.0) + WIDEN);
+    /* In the contract's order, as tse_ik names a failing pose. */
+    *failed = !(d[2] - rho > TSE_R(0.0))                                                   ? TSE_BELOW
+              : !(w2 - w2r >= g->w_lo * g->w_lo && w2 + w2r <= g->w_hi * g->w_hi)         ? TSE_ALPHA
+              : !(sa - ca >= g->p.s_min && sa + ca <= g->p.s_max && sb - cb >= g->p.s_min &&
+                  sb + cb <= g->p.s_max)                                                  ? TSE_STROKE
+              : !(det_lo > TSE_R(0.0) && det_lo * det_lo >= mu_min * mu_min * n1 * n2 * (TSE_R(1.0) + WIDEN) &&
+                  mu_lo * (mu_lo - mu_min) * row_lo >= TSE_R(4.0) * g->mu_guard * (TSE_R(1.0) + WIDEN))
+                  ? TSE_SINGULAR
+                  : TSE_OK;
 
     /* First derivatives: M q' = -2 (G1, G2), G1 = (s_B b - s_A a).C', G2 = (d - s_A a).C'. */
     const tse_real *d1 = jm->d1, *d2 = jm->d2;
@@ -283,6 +287,7 @@ int tse_ik_enclose(const tse_geometry *g, const tse_piece *piece, const tse_real
     out->enclosed = 0;
     out->proven = 0;
     out->scissor = 1;
+    out->status = TSE_INVALID;
     if (centre->status != TSE_OK)
         return 0;
     const tse_real r_top = g->r_top;
@@ -308,11 +313,12 @@ int tse_ik_enclose(const tse_geometry *g, const tse_piece *piece, const tse_real
         cross3(piece->omega, wr, jm.d2);
         jm.rho1 = n_om * n_om * (n_rc * h + piece->pad) * widen;
         jm.rho2 = n_om * n_om * n_om * (n_rc * h + piece->pad) * widen;
-        int proven = 0;
+        tse_status failed = TSE_OK;
         tse_real dq[2], ddq[2], dq_c[2], ddq_c[2];
-        if (!enclose_scissor(g, i, centre->C[i], &centre->q[2 * i], &jm, &boxes[i], &proven, dq, ddq, dq_c,
+        if (!enclose_scissor(g, i, centre->C[i], &centre->q[2 * i], &jm, &boxes[i], &failed, dq, ddq, dq_c,
                              ddq_c)) {
             out->scissor = i + 1;
+            out->status = TSE_SINGULAR;
             return 0;
         }
         for (int k = 0; k < 2; ++k) {
@@ -324,9 +330,10 @@ int tse_ik_enclose(const tse_geometry *g, const tse_piece *piece, const tse_real
             out->dq_c[j] = dq_c[k];
             out->ddq_c[j] = ddq_c[k];
         }
-        if (!proven && proven_all) {
+        if (failed != TSE_OK && proven_all) {
             proven_all = 0;
             out->scissor = i + 1;
+            out->status = failed;
         }
     }
     out->enclosed = 1;
@@ -342,6 +349,7 @@ int tse_ik_enclose(const tse_geometry *g, const tse_piece *piece, const tse_real
     const tse_real axes[3][3] = {{cy * cp, sy * cp, -sp}, {-sy, cy, TSE_R(0.0)}, {TSE_R(0.0), TSE_R(0.0), TSE_R(1.0)}};
     const tse_real phi = (n_om * h + piece->pad / r_top) * widen;
     const tse_real cp_lo = tse_fabs(cp) - phi;
+    out->status = TSE_DEGENERATE; /* until the type-2 bound holds */
     if (!(cp_lo > TSE_R(0.0))) {
         out->scissor = 1;
         return 0;
@@ -369,5 +377,6 @@ int tse_ik_enclose(const tse_geometry *g, const tse_piece *piece, const tse_real
     }
     out->proven = 1;
     out->scissor = 0;
+    out->status = TSE_OK;
     return 1;
 }

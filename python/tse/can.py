@@ -296,6 +296,15 @@ def reject_words(raw):
         return (f"rejected: kinematics: {cmd}: scissor {scissor} is {_enum('kin_status', kin)} at "
                 f"{where / 10.0:.1f}% of the path (the pose, or the path to it, leaves the workspace "
                 f"with its margins; 'tse-kin ik' shows the pose's status)")
+    if rn == "too_long":
+        if field == 0:
+            return (f"rejected: too_long: {cmd}: the move would last longer than the {where} s a move may (its "
+                    "speed too slow, or its duration too long once stretched to the slide limits): ask a faster "
+                    "speed or a shorter duration, or split the move")
+        return (f"rejected: too_long: {cmd}: the path comes so near a limit (scissor {scissor} "
+                f"{_enum('kin_status', kin)}) at {where / 10.0:.1f}% of its length that the controller cannot "
+                "check so long a move within one frame: split it into shorter moves, or keep the path farther "
+                "from that limit")
     if rn == "timing":
         limit, slide = divmod(field, 16)  # the slide, plus 16 times the limit (CODES["slide_limit"])
         slide = _SLIDES[slide - 1] if 1 <= slide <= 6 else "?"

@@ -100,6 +100,10 @@ static void param_set_rule_words(void **state)
         [FW_RULE_CONFIG] = "the controller's step interrupt and control segment rates cannot run any set (a firmware "
                            "configuration fault)",
         [FW_RULE_NOT_AT_REST] = "the step generator was still running: parameters change only at rest (try again)",
+        [FW_RULE_HOME_MARGINS] = "the home pose must pass its own margins (mu_min, nu_min) and stroke, or every move "
+                                 "from it is refused",
+        [FW_RULE_HOMING_PATH] = "homing's final move, straight in slide space from the homing switches (home_sw_1..6) "
+                                "to the home pose, must pass valid poses only (within the workspace and both margins)",
     };
     assert_int_equal(sizeof want / sizeof want[0], FW_RULE_COUNT);
     const int set = proto_table[PM_PARAM_SET].function;
@@ -111,7 +115,7 @@ static void param_set_rule_words(void **state)
     }
     proto_message m = reject(set, FW_REASON_PARAM_SET, 0, 0, FP_DIR_SETUP_NS, FW_RULE_COUNT);
     assert_string_equal(reject_text(&m, b, sizeof b),
-                        "rejected: param_set: dir_setup_ns: the set breaks a rule this tsectl does not know (code 12; "
+                        "rejected: param_set: dir_setup_ns: the set breaks a rule this tsectl does not know (code 14; "
                         "a firmware newer than tsectl?); nothing was changed");
 }
 

@@ -448,9 +448,9 @@ static void test_switches_outside_homing(void **state)
     assert_int_equal(fw_fault_of(C), FW_FAULT_LIMIT);
 }
 
-/* A parameter change over the bus.  Returns 'a' or 'r' (with the reason and the field named). */
 /* The cross-check's tolerance is 0.5 mm, 640 steps at 1.28M steps/m.  Switches placed 0.3 mm
- * above, 0.7 mm above, 0.3 mm below and 0.7 mm below where homing leaves slides 1 to 4 (home_s);
+ * above, 0.7 mm above, 0.3 mm below and 0.7 mm below where homing leaves slides 1 to 4 (home_s),
+ * 5 and 6 at it;
  * then each switch is moved by 1 mm across its slide, as lost steps would move the slide: within
  * the tolerance the disagreement is let pass, beyond it it is a limit fault. */
 static void test_switch_tolerance(void **state)
@@ -459,16 +459,30 @@ static void test_switch_tolerance(void **state)
     start();
     const long at_home = lround(fw_geometry_of(C)->home_s * 1280000.0); /* steps at home */
     const int32_t home_um = (int32_t)lround(fw_geometry_of(C)->home_s * 1e6);
-    const int32_t sw_um[4] = {home_um - 300, home_um - 700, home_um + 300, home_um + 700};
-    for (int k = 0; k < 4; ++k) {
-        assert_int_equal(set_param((uint16_t)(FP_HOME_SW_1 + k), sw_um[k], NULL, NULL), 'a');
+    const int32_t sw_um[6] = {home_um - 300, home_um - 700, home_um + 300, home_um + 700, home_um, home_um};
+    /* The switches written whole, past the wire's one-at-a-time PARAM_SET: the check refuses a
+     * set with some switches near home and the others at 0.2 m (homing's final move from there
+     * leaves the workspace), and every set on the way to this one is such a set.  So the set is
+     * stored, and the controller started again finds it (as after a PARAM_SAVE). */
+    fw_param_set ps = *fw_params_of(C);
+    for (int k = 0; k < 6; ++k)
+        ps.v[FP_HOME_SW_1 + k] = sw_um[k];
+    assert_int_equal(fw_params_judge(&ps).rule, FW_RULE_NONE);
+    fw_hal hal;
+    fake_hal_init(&F, &hal);
+    F.storage_len = (int)fw_params_serialize(&ps, F.storage, sizeof F.storage);
+    assert_true(F.storage_len > 0);
+    for (int k = 0; k < 6; ++k) {
         F.switch_at[k] = (int32_t)((int64_t)sw_um[k] * 128 / 100); /* pressed at and below */
         F.steps[k] = F.switch_at[k] + 3000;
     }
+    restart(&hal);
+    for (int k = 0; k < 6; ++k)
+        assert_int_equal(fw_params_of(C)->v[FP_HOME_SW_1 + k], sw_um[k]);
     for (int round = 0; round < 2; ++round) {
         if (round == 1) {
             /* Again from a fresh homing, for slide 4 (the fault of slide 2 ended the first). */
-            for (int k = 0; k < 4; ++k)
+            for (int k = 0; k < 6; ++k)
                 F.switch_at[k] = (int32_t)((int64_t)sw_um[k] * 128 / 100);
             cmd(PM_CLEAR_FAULT);
             run(10);

@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -11,6 +12,7 @@
 #include "fw/limits.h"
 #include "fw/params.h"
 #include "fw/types.h"
+#include "tse/fk.h"
 
 static void test_defaults_are_the_prototype(void **state)
 {
@@ -94,9 +96,15 @@ static void test_board_parameters(void **state)
         assert_int_equal(fw_params_check(&t), FP_CAN_KBPS);
     }
     assert_int_equal(s.v[FP_CAN_KBPS], 1000);
-    /* A switch outside the stroke [0, 0.9 m] is refused, naming it. */
-    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 900001, NULL), FW_REASON_PARAM_SET);
-    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 900000, NULL), 0);
+    /* A switch outside the stroke [0, 0.9 m] is refused, naming it.  At its end, 0.9 m, with the
+     * others at 0.2 m, it is in the stroke, but homing's final move from there leaves the
+     * workspace. */
+    fw_param_fault why;
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 900001, &why), FW_REASON_PARAM_SET);
+    assert_int_equal(why.rule, FW_RULE_SWITCH_STROKE);
+    assert_int_equal(fw_params_set_one(&s, FP_HOME_SW_3, 900000, &why), FW_REASON_PARAM_SET);
+    assert_int_equal(why.rule, FW_RULE_HOMING_PATH);
+    assert_int_equal(why.id, FP_HOME_SW_3);
     fw_param_set t = s;
     t.v[FP_HOME_SW_5] = 950000;
     assert_int_equal(fw_params_check(&t), FP_HOME_SW_5);
@@ -142,6 +150,11 @@ static void test_judge_rules(void **state)
         {FP_HOME_SW_1, FP_HOME_SW_2, 183500, 183500, FW_RULE_SWITCH_REACH, FP_HOME_SW_1},
         {FP_HOME_SW_6, -1, 50000, 0, FW_RULE_SWITCH_REACH, FP_HOME_SW_5}, /* a pair through its first */
         {FP_HOME_SW_1, FP_HOME_SW_2, 184000, 184000, FW_RULE_NONE, -1},  /* 0.318697 m: wide enough */
+        /* Home has nu 0.73 (issue 24): a margin of 0.9 leaves it no pose to move from. */
+        {FP_NU_MIN, -1, 900000, 0, FW_RULE_HOME_MARGINS, FP_NU_MIN},
+        /* Issue 24: from 12.8 % of the way from these switches (the others at 0.2 m) to home, nu
+         * falls to 0.0015, then the slides have no pose. */
+        {FP_HOME_SW_1, -1, 475000, 0, FW_RULE_HOMING_PATH, FP_HOME_SW_1},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         fw_param_set s;
@@ -172,6 +185,61 @@ static void test_judge_rules(void **state)
         assert_int_equal(why.rule, cases[i].rule);
         assert_memory_equal(&s, &before, sizeof s);
     }
+}
+
+/* Homing's final move from random switch sets (each switch 0.2 m to 0.2 m + spread, the issue's
+ * spreads), walked independently of the judge at 960 points (ten between each two of its own) by
+ * forward kinematics from the home end: a set whose walk leaves the valid poses is refused
+ * (homing_path), and one the judge takes walks through valid poses only. */
+static void test_homing_path_random(void **state)
+{
+    (void)state;
+    uint64_t rng = 0x9E3779B97F4A7C15ull;
+    static const int32_t spreads[] = {200000, 250000};
+    int refused = 0, taken = 0;
+    for (size_t sp = 0; sp < 2; ++sp)
+        for (int n = 0; n < 200; ++n) {
+            fw_param_set s;
+            fw_params_default(&s);
+            for (int k = 0; k < 6; ++k) {
+                rng = rng * 6364136223846793005ull + 1442695040888963407ull;
+                s.v[FP_HOME_SW_1 + k] = 200000 + (int32_t)((rng >> 33) % (uint64_t)(spreads[sp] + 1));
+            }
+            const fw_param_fault f = fw_params_judge(&s);
+            if (f.rule != FW_RULE_NONE && f.rule != FW_RULE_HOMING_PATH)
+                continue; /* another rule (the switches' reach) decides */
+            tse_params p;
+            fw_params_kinematics(&s, &p);
+            tse_geometry g;
+            assert_int_equal(tse_geometry_init(&g, &p), TSE_PARAM_OK);
+            double seed[6];
+            for (int k = 0; k < 6; ++k)
+                seed[k] = g.home_pose[k];
+            bool valid = true;
+            for (int i = 960; i >= 0 && valid; --i) {
+                double q[6];
+                for (int k = 0; k < 6; ++k) {
+                    const double from = s.v[FP_HOME_SW_1 + k] * 1e-6;
+                    q[k] = from + (i / 960.0) * (g.home_s - from);
+                }
+                tse_fk_result r;
+                valid = tse_fk(&g, q, seed, &r) == TSE_OK;
+                for (int k = 0; k < 6; ++k)
+                    seed[k] = r.pose[k];
+            }
+            if (f.rule == FW_RULE_HOMING_PATH) {
+                ++refused;
+                if (valid)
+                    fail_msg("spread %d, set %d: refused, but its path walks through valid poses", spreads[sp], n);
+            } else {
+                ++taken;
+                if (!valid)
+                    fail_msg("spread %d, set %d: taken, but its path leaves the valid poses", spreads[sp], n);
+            }
+        }
+    printf("homing paths: %d sets refused, %d taken\n", refused, taken);
+    assert_true(refused >= 10);
+    assert_true(taken >= 100);
 }
 
 static void test_record(void **state)
@@ -252,6 +320,7 @@ int main(void)
         cmocka_unit_test(test_set_one),
         cmocka_unit_test(test_board_parameters),
         cmocka_unit_test(test_judge_rules),
+        cmocka_unit_test(test_homing_path_random),
         cmocka_unit_test(test_record),
         cmocka_unit_test(test_older_record),
     };

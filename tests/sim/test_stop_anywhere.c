@@ -6,11 +6,16 @@
  *   - a move with a second one committed during it and blended into its end: every 20 ms from
  *     the second's commit to the end of both, every 5 ms while both run;
  *   - moves, one with short ramps and some as fast as the slide limits allow: every 5 ms for
- *     0.4 s, then every 100 ms.
- * The soak found all three: a stop in the first ramp of the joint move or of a move braked
+ *     0.4 s, then every 100 ms;
+ *   - trajectories accelerating at the slide limit (along x, and in yaw): every millisecond of
+ *     their first 80 ms, then every 10 ms, and the controller's own underrun stop after each row
+ *     from the 20th.  A trajectory's ramp was sized from the speed at the STOP while the host's
+ *     path went on accelerating into it: 1.29 times slide_amax (issue 24; 1.31 in its probe).
+ * The soak found the first three: a stop in the first ramp of the joint move or of a move braked
  * beyond the acceleration limit (its ramp was sized from the present speed, which goes on growing
  * along an accelerating path), and a stop once the blend had begun dropped the second move and
  * sent the slides back to the first move's path at once. */
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -132,12 +137,180 @@ static void test_stop_anywhere_in_moves(void **state)
     print_message("%u stops along 4 moves: all within the limits\n", stops);
 }
 
+/* A trajectory from the home pose along x (or in yaw): rows every 10 ms, accelerating at `a` for 60 ms,
+ * cruising 0.24 s, braking at `a` for 60 ms to rest (the last row).  x at t s.  The rig's step rate
+ * (100 kHz) caps the slides at 0.069 m/s: 60 ms at slide_amax, 1 m/s^2, stays below. */
+static double traj_x(double a, double t)
+{
+    const double t1 = 0.06, t2 = 0.3, T = 0.36;
+    if (t <= t1)
+        return 0.5 * a * t * t;
+    if (t <= t2)
+        return 0.5 * a * t1 * t1 + a * t1 * (t - t1);
+    if (t >= T)
+        return a * t1 * (T - t1);
+    const double u = T - t;
+    return a * t1 * (T - t1) - 0.5 * a * u * u;
+}
+#define TRAJ_ROWS 36
+static int traj_axis; /* the pose coordinate it moves along: x (0) or yaw (5) */
+
+typedef struct {
+    int sent;    /* rows sent */
+    uint8_t id;  /* the trajectory's identity: its first row's number */
+    double a;
+    int upto;    /* rows the host will send (fewer than TRAJ_ROWS: it falls silent, an underrun) */
+} streamer;
+
+/* The host: rows as the queue has room, up to s->upto. */
+static void stream(sim_rig *r, streamer *s)
+{
+    while (s->sent < s->upto && rig_now(r).traj_free > 2u &&
+           (s->sent == 0 || rig_now(r).src == FW_SRC_TRAJ || fw_state_of(r->fw) == FW_STATE_IDLE)) {
+        const int i = s->sent + 1;
+        double pose[6];
+        for (int k = 0; k < 6; ++k)
+            pose[k] = fw_geometry_of(r->fw)->home_pose[k];
+        pose[traj_axis] += traj_x(s->a, 0.01 * i);
+        const uint8_t q = r->seq++;
+        if (i == 1)
+            s->id = q;
+        rig_stage(r, q, pose);
+        const int32_t v[4] = {q, 10000, (i == 1 ? (int32_t)PROTO_TRAJ_FIRST : 0) | (i == TRAJ_ROWS ? (int32_t)PROTO_TRAJ_LAST : 0), s->id};
+        rig_send(r, PM_TRAJ_COMMIT, v);
+        ++s->sent;
+        rig_run(r, 1); /* its answer, and room for the next */
+    }
+}
+
+/* Whether the controller takes the whole trajectory at acceleration a (the rig back as it was
+ * afterwards: a copy restores it only into the same place, its pointers being into itself). */
+static bool takes(double a)
+{
+    static sim_rig saved;
+    saved = R;
+    streamer s = {0, 0, a, TRAJ_ROWS};
+    const unsigned from = R.nlog;
+    for (int ms = 0; ms < 1000 && s.sent < TRAJ_ROWS; ++ms) {
+        stream(&R, &s);
+        rig_run(&R, 1);
+    }
+    uint8_t reason = 0;
+    const bool all = s.sent == TRAJ_ROWS && rig_answers(&R, from, proto_table[PM_TRAJ_COMMIT].function) == TRAJ_ROWS &&
+                     rig_answer(&R, from, proto_table[PM_TRAJ_COMMIT].function, -1, &reason) == 'a';
+    bool refused = false;
+    for (unsigned n = from; n < R.nlog; ++n) {
+        const hal_can_frame *f = &R.log[n % RIG_LOG].f;
+        refused |= (f->id >> PROTO_NODE_BITS) == proto_table[PM_REJECT].function;
+    }
+    R = saved;
+    return all && !refused;
+}
+
+/* The largest slide acceleration of a STOP now until rest, as the plant measures it (the second
+ * difference over 10 ms at every millisecond), over slide_amax; the rig back as it was. */
+static double stop_peak(void)
+{
+    here = R;
+    /* hist[j]: the slides j ms ago, from the plant's own record of the last 20 ms. */
+    static int64_t hist[21][6];
+    for (int j = 0; j < 21; ++j)
+        for (int k = 0; k < 6; ++k)
+            hist[j][k] = R.plant.hist[(R.plant.ms + 19u - (uint32_t)(j < 20 ? j : 19)) % 20u][k];
+    R.allowed_breaches = UINT32_MAX; /* measured here, judged by stop_here */
+    rig_cmd(&R, PM_STOP);
+    double peak = 0.0;
+    const double spm = R.plant.cfg.steps_per_m;
+    for (int ms = 0; ms < 10000 && fw_state_of(R.fw) != FW_STATE_IDLE; ++ms) {
+        rig_run(&R, 1);
+        memmove(hist[1], hist[0], sizeof hist - sizeof hist[0]);
+        for (int k = 0; k < 6; ++k) {
+            hist[0][k] = R.plant.steps[k];
+            const double a = (double)(hist[0][k] - 2 * hist[10][k] + hist[20][k]) / (spm * 1e-4);
+            if (fabs(a) > peak)
+                peak = fabs(a);
+        }
+    }
+    const double amax = R.plant.cfg.amax;
+    R = here;
+    return peak / amax;
+}
+
+/* Issue 24: rows accelerating at the limit along x, then in yaw, a STOP (or the host falling silent: an underrun stop)
+ * while the path keeps accelerating.  The stop ramp was sized from the speed at the STOP: it
+ * braked at 1.3 times slide_amax.  The plate's acceleration is the largest the controller's
+ * validator takes, within 1 %: its slides accelerate at the limit. */
+static void test_stop_anywhere_in_a_trajectory(void **state)
+{
+    (void)state;
+    homing = false;
+    rig_boot(&R, 0.205);
+    rig_home(&R);
+    static sim_rig home;
+    home = R;
+    for (traj_axis = 0; traj_axis <= 5; traj_axis += 5) {
+        R = home;
+        double lo = 0.05, hi = 5.0;
+        assert_true(takes(lo));
+        assert_false(takes(hi));
+        while (hi / lo > 1.01) {
+            const double mid = sqrt(lo * hi);
+            if (takes(mid))
+                lo = mid;
+            else
+                hi = mid;
+        }
+        const double a = lo;
+        unsigned stops = 0, underruns = 0;
+        double worst = 0.0;
+        /* A STOP every millisecond over the first 80 ms of the trajectory's clock, then every 10 ms. */
+        for (uint32_t at = 0; at < 360; at += at < 80 ? 1 : 10) {
+            R = home;
+            streamer s = {0, 0, a, TRAJ_ROWS};
+            for (int ms = 0; ms < 2000 && !(rig_now(&R).src == FW_SRC_TRAJ && rig_now(&R).run_clock); ++ms) {
+                stream(&R, &s);
+                rig_run(&R, 1);
+            }
+            assert_int_equal(rig_now(&R).src, FW_SRC_TRAJ);
+            for (uint32_t ms = 0; ms < at && rig_now(&R).src == FW_SRC_TRAJ; ++ms) {
+                stream(&R, &s);
+                rig_run(&R, 1);
+            }
+            if (rig_now(&R).src != FW_SRC_TRAJ)
+                break;
+            const double peak = stop_peak();
+            if (peak > worst)
+                worst = peak;
+            stop_here(at);
+            ++stops;
+        }
+        /* The host falls silent after row n: the controller's own underrun stop. */
+        for (int upto = 20; upto < TRAJ_ROWS; ++upto) { /* fewer than 20 rows (0.2 s) never start */
+            R = home;
+            streamer s = {0, 0, a, upto};
+            for (int ms = 0; ms < 3000 && fw_state_of(R.fw) != FW_STATE_FAULT; ++ms) {
+                stream(&R, &s);
+                rig_run(&R, 1);
+            }
+            if (fw_state_of(R.fw) == FW_STATE_FAULT && fw_fault_of(R.fw) == FW_FAULT_UNDERRUN)
+                ++underruns;
+        }
+        print_message("%s at %.3f %s: %u stops (at most %.3f of slide_amax, the path's own acceleration "
+                      "included) and %u underrun stops along the trajectory: all within the limits\n",
+                      traj_axis == 0 ? "x" : "yaw", a, traj_axis == 0 ? "m/s^2" : "rad/s^2", stops, worst,
+                      underruns);
+        assert_true(stops > 80);
+        assert_true(underruns >= 10);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stop_anywhere_in_homing),
         cmocka_unit_test(test_stop_anywhere_in_a_blend),
         cmocka_unit_test(test_stop_anywhere_in_moves),
+        cmocka_unit_test(test_stop_anywhere_in_a_trajectory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

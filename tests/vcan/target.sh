@@ -10,11 +10,12 @@ NODE=${NODE:-1}
 T="tsectl --iface vcan0 --node $NODE --timeout 20000"
 
 # controller_start [tse-sim arguments]: the controller is on the bus and has sent a STATUS.
+# SIM_WRAP (words): a command tse-sim runs under (python_can.sh: at a lower priority).
 controller_start() {
   if [ "$TSE_TARGET" = board ]; then
     $T status >/dev/null 2>&1
   else
-    tse-sim --iface vcan0 --node "$NODE" "$@" >sim.log 2>&1 &
+    ${SIM_WRAP:-} tse-sim --iface vcan0 --node "$NODE" "$@" >sim.log 2>&1 &
     sim_pid=$!
     sleep 0.5
     $T status >/dev/null 2>&1
@@ -31,8 +32,13 @@ slides_now() {
   if [ "$TSE_TARGET" = board ]; then
     tse-rig slides | sed -n 's/^slides //p'
   else
-    $T status | sed -n 's/^slides //;s/ m$//p'
+    commanded_slides
   fi
+}
+
+# The slides the controller reports it commanded (its telemetry, to the nanometre), metres.
+commanded_slides() {
+  $T status --json | sed -n 's/.*"slides": \[\([^]]*\)\].*/\1/p' | tr -d ,
 }
 
 # The slides of pose X Y Z ROLL PITCH YAW (m, rad) by tse-kin's inverse kinematics, or nothing.
@@ -51,4 +57,24 @@ slides_near() {
 # commanded slides' rounding, and the homing edge's step on the board).
 at_pose() {
   slides_near "$(slides_now)" "$(ik_slides "$@")" 1.5
+}
+
+# ctl COMMAND...: runs tsectl COMMAND (output in out.txt), returns its status, and writes a line
+# to transcript.txt: the command, its exit status and, for a refusal, the controller's reason (for
+# kinematics with the scissor and its status).  The transcripts of one scenario on tse-sim and on
+# the board must be the same (the differential test).
+ctl() {
+  $T "$@" >out.txt 2>&1
+  local rc=$?
+  local why
+  why=$(grep -o 'rejected: [a-z_]*' out.txt | head -1)
+  [ -z "$why" ] || why="$why$(grep -o ': scissor [0-9] is [a-z]*' out.txt | head -1)"
+  echo "$* -> $rc${why:+, $why}" >>transcript.txt
+  return $rc
+}
+
+# The commanded slides in whole steps (1,280,000 a metre), as the controller reports them.
+steps_now() {
+  commanded_slides |
+    awk '{ for (k = 1; k <= 6; ++k) printf("%s%d", (k > 1 ? " " : ""), ($k < 0 ? -1 : 1) * int(($k < 0 ? -$k : $k) * 1280000 + 0.5)); print "" }'
 }

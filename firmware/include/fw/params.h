@@ -90,6 +90,8 @@ typedef enum {
     FW_RULE_DIR_SETUP_ROOM = 9, /* the DIR set-up leaves room for a step in a reversing segment */
     FW_RULE_CONFIG = 10,        /* the controller's step and segment rates cannot run any set */
     FW_RULE_NOT_AT_REST = 11,   /* the step generator was still running */
+    FW_RULE_HOME_MARGINS = 12,  /* the home pose passes its own margins (mu_min, nu_min, stroke) */
+    FW_RULE_HOMING_PATH = 13,   /* homing's final move from the switches stays at valid poses */
     FW_RULE_COUNT
 } fw_param_rule;
 
@@ -103,7 +105,9 @@ typedef struct {
 /* Checks every range (and can_kbps against its four rates), then the geometry, then that the six
  * homing switches can be reached together: with every slide at its switch each scissor must be
  * within its angle stops (its width at least 2 l0 cos alpha_max), otherwise six slides seeking
- * down together would be stopped by the mechanism before the switches.  The first rule broken,
+ * down together would be stopped by the mechanism before the switches; then that the home pose
+ * passes its own margins and that homing's final move, straight in slide space from the switches
+ * to the home pose's slides, passes valid poses only (fw/joint_path.h).  The first rule broken,
  * with the parameter at fault (a switch pair is blamed through its first switch); rule
  * FW_RULE_NONE and id -1 when all is well.  What depends on the controller's configuration (the
  * STEP pulse and DIR set-up against its step interrupt rate) is fw_params_judge_config's

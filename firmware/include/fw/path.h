@@ -52,11 +52,15 @@ typedef struct {
 
 /* Why a path was refused.  Fields that do not belong to the reason are 0. */
 typedef struct {
-    fw_reason reason;  /* NONE, KINEMATICS, RANGE (a bad request), TIMING */
-    tse_status status; /* KINEMATICS: kinematic status of the first failing point */
-    int scissor;       /* KINEMATICS: its first failing scissor; TIMING: the scissor of `slide` (1..3) */
+    fw_reason reason;  /* NONE, KINEMATICS, RANGE (a bad request), TIMING, TOO_LONG (a move longer
+                        * than FW_MOVE_MAX_S, or too long to prove near a limit: fw/validate.h) */
+    tse_status status; /* KINEMATICS: kinematic status of the first failing point; TOO_LONG: TSE_OK
+                        * for a move longer than FW_MOVE_MAX_S, else the limit the proof stopped at */
+    int scissor;       /* KINEMATICS: its first failing scissor; TIMING: the scissor of `slide` (1..3);
+                        * TOO_LONG near a limit: the scissor the proof stopped at */
     uint32_t segment;  /* KINEMATICS: first failing segment */
-    tse_real where;    /* KINEMATICS: its u, 0..1 */
+    tse_real where;    /* KINEMATICS, TOO_LONG near a limit: its u, 0..1; TOO_LONG in time:
+                        * FW_MOVE_MAX_S */
     uint8_t slide;     /* TIMING: the slide with the worst demand, 1..6 (A1, B1, A2, B2, A3, B3) */
     bool accel;        /* TIMING: that demand is an acceleration (else a speed) */
     fw_slide_limit limit; /* TIMING: the limit it is against (FW_LIMIT_SLIDE_AMAX when accel) */

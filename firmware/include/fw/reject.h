@@ -3,15 +3,19 @@
  *
  * Beyond function, seq and reason, the fields name:
  * - scissor: KINEMATICS, the first failing scissor 1..3; TIMING, the scissor of the slide over
- *   its limit; otherwise 0.  kin_status: KINEMATICS only, otherwise 0.
+ *   its limit; TOO_LONG near a limit, the scissor the proof stopped at; otherwise 0.  kin_status:
+ *   KINEMATICS and TOO_LONG near a limit only, otherwise 0.
  * - field: RANGE, the offending field's index; PARAM_UNKNOWN, PARAM_RANGE, PARAM_SET, the
  *   parameter id (255 for one above); STATE, the fw_state that refused; TIMING, the slide 1..6
  *   (A1, B1, A2, B2, A3, B3: q index + 1) with the worst demand, plus FW_REJECT_LIMIT times the
  *   limit it is against (fw_slide_limit: 0 slide_vmax, 1 slide_amax, which makes the old
- *   "+16: acceleration", 2 the step generator's speed limit); otherwise 0.
+ *   "+16: acceleration", 2 the step generator's speed limit); TOO_LONG, 0 in time, 1 near a
+ *   limit; otherwise 0.
  * - where: KINEMATICS, the failing point's position along the path in per mille (0..1000);
  *   TIMING, the demand in per mille of the limit field names (1000: at it; 1350: 35 % over), at
- *   most 65535; PARAM_SET, the rule the set breaks (fw_param_rule). */
+ *   most 65535; PARAM_SET, the rule the set breaks (fw_param_rule); TOO_LONG, with field 0 (a move
+ *   longer than a move may last) FW_MOVE_MAX_S in s, with field 1 (a move too long to prove near a
+ *   limit, which scissor and kin_status name) the position along the path in per mille. */
 #ifndef FW_REJECT_H
 #define FW_REJECT_H
 

@@ -25,6 +25,8 @@ typedef struct {
     tse_real q0[4];   /* its orientation as a quaternion (hemisphere continuous along the queue) */
     uint64_t t_us;    /* path time of the point: integer microseconds, so that comparisons with
                        * the segment grid are exact */
+    tse_real v_peak;  /* the fastest any slide goes over the piece ending here [m/s], as its
+                       * validation's setpoints measured it: what a stop along it must brake */
     bool last;
 } fw_traj_point;
 

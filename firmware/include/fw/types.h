@@ -3,6 +3,10 @@
 #ifndef FW_TYPES_H
 #define FW_TYPES_H
 
+/* The longest a move may last [s], stretched or not: MOVE_COMMIT's longest duration, one hour.  A
+ * slower one (a move of metres at micrometres a second) is refused TOO_LONG (fw/move.h). */
+#define FW_MOVE_MAX_S 3600
+
 typedef enum {
     FW_STATE_BOOT = 0,
     FW_STATE_DISABLED = 1,
@@ -79,6 +83,8 @@ typedef enum {
                                   * it was refused or lost (nothing taken; send again from that one) */
     FW_REASON_ENDED = 16,        /* a row of a trajectory that is not running: it ended (a STOP, a
                                   * fault, an underrun, an e-stop, or its last row), or never began */
+    FW_REASON_TOO_LONG = 17,     /* a move beyond what one frame may validate: longer than
+                                  * FW_MOVE_MAX_S, or too long to prove near a limit (fw/reject.h) */
     FW_REASON_COUNT
 } fw_reason;
 

@@ -52,6 +52,10 @@ typedef struct {
     int enclosed;       /* 1: every pose of the piece has one branch solution in [q_lo, q_hi] */
     int proven;         /* 1: enclosed, and the whole box passes every check of the contract */
     int scissor;        /* first scissor whose box could not be enclosed or proven, else 0 */
+    tse_status status;  /* TSE_OK when proven; else the first check of the contract that the box of
+                         * `scissor` fails (TSE_BELOW .. TSE_DEGENERATE), TSE_SINGULAR when it could
+                         * not be enclosed (its constraint matrix too near singular over the piece
+                         * for one branch to be told), TSE_INVALID for a centre not solved */
     tse_real q_lo[6], q_hi[6];
     tse_real dq[6];     /* sup |dq_k/du| over the piece (enclosed only) */
     tse_real ddq[6];    /* sup |d2q_k/du2| over the piece (enclosed only) */

@@ -21,7 +21,7 @@ int main(void)
      * rule code in where, and past them. */
     static const int fields[] = {0,  1,  2,  3,  4,  5,  6,  7,  8,  9,  11, 17,  18,  20,
                                  22, 23, 25, 30, 33, 34, 40, 49, 54, 65, 70, 250, 255};
-    static const int wheres[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 15, 999, 1000, 1001, 1350, 65535};
+    static const int wheres[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 15, 999, 1000, 1001, 1350, 3600, 65535};
     for (int f = 0; f < nf; ++f)
         for (int reason = 0; reason < FW_REASON_COUNT; ++reason)
             for (size_t k = 0; k < sizeof fields / sizeof fields[0]; ++k)

@@ -55,6 +55,12 @@ static void check_reject_details(const int64_t *v, fw_state state_before, bool s
         FUZZ_CHECK(scissor == 0 && kin == 0 && (field & 15) < FW_TRAJ_END_COUNT && (field >> 4) < FW_FAULT_COUNT);
         FUZZ_CHECK(((field >> 4) != 0) == ((field & 15) == FW_TRAJ_END_FAULT) && where >= 0 && where <= 65535);
         break;
+    case FW_REASON_TOO_LONG: /* 0: longer than a move may last (where, s); 1: unproven near a limit */
+        if (field == 0)
+            FUZZ_CHECK(scissor == 0 && kin == 0 && where == FW_MOVE_MAX_S);
+        else
+            FUZZ_CHECK(field == 1 && scissor >= 1 && scissor <= 3 && kin != 0 && where >= 0 && where <= 1000);
+        break;
     case FW_REASON_ORDER: /* field: the sequence number expected */
         FUZZ_CHECK(scissor == 0 && kin == 0 && where == 0);
         break;
@@ -150,6 +156,7 @@ static void judge_commit(oracle_model *o, const rig *r, const oracle_outputs *ou
         case FW_REASON_KINEMATICS:
         case FW_REASON_TIMING:
         case FW_REASON_RANGE:
+        case FW_REASON_TOO_LONG:
             /* Refused for its content: the content was there to refuse. */
             FUZZ_CHECK(complete && fresh && o->before.in.homed);
             spends = true;
