@@ -183,6 +183,10 @@ typedef struct {
     _Atomic uint32_t ended_in, ended_out;
     /* The last heartbeat: the thread (and ENABLE in the tick) store, the tick's watchdog reads. */
     _Atomic uint32_t heartbeat_us;
+    /* When the thread last found the bus empty: the clock read just before the receive that
+     * returned nothing, so every heartbeat that reached the bus before it is in heartbeat_us.  The
+     * watchdog judges the host's silence up to here, not up to the tick's own clock (supervise.c). */
+    _Atomic uint32_t bus_read_us;
     /* The thread's progress (fw_thread_progress). */
     _Atomic uint32_t progress;
     /* fw_estop_isr ran; the tick still to complete it (fw_estop). */

@@ -12,7 +12,16 @@ bool fw_inbox_next(fw_controller *c, hal_can_frame *f)
         --th->in_count;
         return true;
     }
-    return c->hal.can.receive(c->hal.can.ctx, f) == 1;
+    return fw_inbox_receive(c, f);
+}
+
+bool fw_inbox_receive(fw_controller *c, hal_can_frame *f)
+{
+    const uint32_t t = fw_now32(c); /* before the look: whatever came before it, the look finds */
+    if (c->hal.can.receive(c->hal.can.ctx, f) == 1)
+        return true;
+    atomic_store(&c->sh.bus_read_us, t);
+    return false;
 }
 
 /* The command message of a frame to this controller (or a broadcast), by its function code and
@@ -36,7 +45,7 @@ static bool watch(void *ctx)
     fw_thread *th = &c->th;
     atomic_fetch_add_explicit(&c->sh.progress, 1u, memory_order_relaxed);
     hal_can_frame f;
-    while (th->in_count < FW_INBOX && c->hal.can.receive(c->hal.can.ctx, &f) == 1) {
+    while (th->in_count < FW_INBOX && fw_inbox_receive(c, &f)) {
         const proto_msg m = command_of(c, &f);
         if (m == PM_HOST_HEARTBEAT) {
             atomic_store(&c->sh.heartbeat_us, fw_now32(c));

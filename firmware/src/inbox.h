@@ -16,6 +16,11 @@
 /* The next frame: the inbox's oldest, else the bus's.  Returns false when none waits. */
 bool fw_inbox_next(fw_controller *c, hal_can_frame *f);
 
+/* The bus's next frame; when none waits, the time of the look is kept as when the thread last found
+ * the bus empty (fw_shared.bus_read_us, what the watchdog judges silence by).  Every read of the
+ * bus goes through here. */
+bool fw_inbox_receive(fw_controller *c, hal_can_frame *f);
+
 /* Validation under way (fw/work.h), watched as above; moving: a STOP ends it too. */
 void fw_inbox_watch_begin(fw_controller *c, bool moving);
 /* Its end: true when a STOP or an ESTOP ended it (or came while it ran, for a motion). */

@@ -58,7 +58,16 @@ void fw_supervise(fw_controller *c)
         t->overruns_seen = overruns;
         fw_fault_raise(c, FW_FAULT_STEP_OVERRUN);
     }
+    /* The host is silent when no heartbeat came for watchdog_ms up to the last time the thread
+     * found the bus empty, not up to now: heartbeats still waiting on the bus, unread because the
+     * thread has not run since (the simulator's tick thread making up late periods on a starved
+     * host before its main thread runs), are not silence.  A thread that never reads the bus again
+     * is the board's hardware watchdog's to catch (fw_thread_progress).  bus_read_us first: a
+     * heartbeat the thread took before it is then seen too.  Signed: ENABLE's heartbeat, stored by
+     * the tick, may be newer than the last look. */
     const uint32_t wd = (uint32_t)t->params.v[FP_WATCHDOG_MS];
-    if (wd > 0 && t->drives_on && fw_now32(c) - atomic_load(&c->sh.heartbeat_us) > wd * 1000u)
+    const uint32_t looked = atomic_load(&c->sh.bus_read_us);
+    const int32_t silent = (int32_t)(looked - atomic_load(&c->sh.heartbeat_us));
+    if (wd > 0 && t->drives_on && silent > (int32_t)(wd * 1000u))
         fw_fault_raise(c, FW_FAULT_WATCHDOG);
 }

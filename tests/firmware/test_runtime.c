@@ -266,6 +266,44 @@ static void test_heartbeats_taken_while_waiting(void **state)
     assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
 }
 
+/* Control periods with only the tick running (the thread not scheduled), the host's heartbeat
+ * arriving on the bus every 10 ms: what tse-sim's tick thread does on a starved host, making up
+ * late periods before its main thread runs. */
+static void ticks_alone(uint32_t ms, bool host_alive)
+{
+    for (uint32_t t = 0; t < ms; ++t) {
+        if (host_alive && t % 10u == 0)
+            heartbeat();
+        F.now_us += 1000;
+        fw_control_tick(C);
+        for (int k = 0; k < 100; ++k)
+            fw_step_tick(C);
+    }
+}
+
+/* The watchdog calls the host silent only from what the thread read of the bus: a second of ticks
+ * while heartbeats wait unread on the bus is no silence (the watchdog judged by the tick's clock
+ * faulted here after 500 ms); once the thread reads them, the host is alive all along.  A host
+ * really silent still faults, once the thread has found the bus empty for watchdog_ms. */
+static void test_watchdog_judges_what_the_thread_read(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    assert_true(fw_drives_of(C));
+    const uint32_t wd = (uint32_t)fw_params_of(C)->v[FP_WATCHDOG_MS];
+    assert_true(wd > 0 && wd < 1000);
+    ticks_alone(2 * wd, true);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
+    run(100); /* the thread runs again: every heartbeat waiting is taken */
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    /* The host falls silent: the thread goes on finding the bus empty. */
+    fake_run(&F, C, wd - 20);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
+    fake_run(&F, C, 40);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_WATCHDOG);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -273,6 +311,7 @@ int main(void)
         cmocka_unit_test(test_stop_ends_a_validation),
         cmocka_unit_test(test_tick_in_a_thread_of_its_own),
         cmocka_unit_test(test_heartbeats_taken_while_waiting),
+        cmocka_unit_test(test_watchdog_judges_what_the_thread_read),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

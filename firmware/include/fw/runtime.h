@@ -8,7 +8,8 @@
  *   e-stop   fw_estop_isr: stepping halts and the drives go off at once.  Board: EXTI, priority 0
  *            (the step interrupt's level: neither preempts the other).
  *   control  fw_control_tick, segment_hz: the e-stop completed, what the thread handed over
- *            taken, supervision (inputs, watchdog, bus, overruns), the motion source advanced and
+ *            taken, supervision (inputs, the host's silence as the thread last read the bus,
+ *            bus, overruns), the motion source advanced and
  *            the next setpoints queued for the step generator, the state published.  It never
  *            waits for the thread.  Board: TIM3's interrupt, priority 2 (below the step
  *            interrupt and its pulse timer, above CAN); simulator: its tick thread.
