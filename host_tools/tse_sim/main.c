@@ -201,7 +201,7 @@ static int usage(const char *why)
 {
     fprintf(stderr,
             "tse-sim: %s\n"
-            "usage: tse-sim --iface IFACE --node N [--params FILE] [--start S] [--board-rules] [--fault SPEC]\n"
+            "usage: tse-sim --iface IFACE --node N [--params FILE] [--start S] [--fault SPEC]\n"
             "       tse-sim --write-params FILE\n"
             "  --params FILE        the controller's parameters, as 'name = value' text in SI units\n"
             "                       (m, rad, m/s, ...; or as the name says: _ms, _ns, _kbps, _deg);\n"
@@ -213,9 +213,6 @@ static int usage(const char *why)
             "                       as a template and exit (refused if FILE exists)\n"
             "  --start S            slide positions at power-up [m] (default 0.05: below the homing\n"
             "                       switches at 0.2 m, so homing first leaves them)\n"
-            "  --board-rules        run by the board's rules where they differ from the simulator's\n"
-            "                       (none at present: the board blends a move committed during another\n"
-            "                       as the simulator does); for programs that compare the two\n"
             "%s",
             why, fault_spec_help);
     return 2;
@@ -246,7 +243,6 @@ int main(int argc, char **argv)
     static fault_plan plan;
     long node = -1;
     double start = 0.05;
-    bool board_rules = false;
     for (int i = 1; i < argc; ++i) {
         const int v = i + 1 < argc;
         char *end = NULL;
@@ -270,8 +266,6 @@ int main(int argc, char **argv)
                 fprintf(stderr, "tse-sim: --fault: %s\n", err);
                 return usage("bad --fault");
             }
-        } else if (!strcmp(argv[i], "--board-rules")) {
-            board_rules = true;
         } else if (!strcmp(argv[i], "--start") && v) {
             if (text_number(argv[++i], &start) != 0 || !(start > -0.01 && start < 0.91))
                 return usage("--start takes a slide position in metres inside the stroke");
@@ -357,8 +351,7 @@ int main(int argc, char **argv)
     sa.sa_handler = on_signal;
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
-    printf("tse-sim: node %ld on %s, %u Hz control, %u Hz steps%s\n", node, iface, CONTROL_HZ, STEP_HZ,
-           board_rules ? ", the board's rules (the same: it blends)" : "");
+    printf("tse-sim: node %ld on %s, %u Hz control, %u Hz steps\n", node, iface, CONTROL_HZ, STEP_HZ);
     if (fault)
         printf("tse-sim: injecting faults: %s\n", fault);
     fflush(stdout);

@@ -204,24 +204,6 @@ check "tse-sim's closing lines say how many control periods ran late, by how muc
 
 kill $dump # the DBC is node 1's
 
-# tse-sim --board-rules blends a move committed during another, as the board does.
-printf 'watchdog_ms = 3000\n' >wd.txt # as node 1's (above)
-tse-sim --iface vcan0 --node 3 --board-rules --params wd.txt >board.log 2>&1 &
-bsim=$!
-sleep 0.5
-B="tsectl --iface vcan0 --node 3 --timeout 5000"
-$B heartbeat &
-bhb=$!
-$B enable >/dev/null 2>&1 && $B home --wait >/dev/null 2>&1
-$B move 0.0 0.0 1.3 0.0 0.0 0.0 --duration 2 >/dev/null 2>&1
-sleep 0.5
-$B move 0.02 0.0 1.4 0.0 0.0 0.0 --duration 2 >out.txt 2>&1; rc=$?
-sed -n 's/^/  | /;1p' out.txt
-check "tse-sim --board-rules: a move during another is blended, as on the board" \
-  "[ $rc -eq 0 ] && grep -q 'blended into the running move' out.txt && grep -q \"the board's rules\" board.log"
-kill $bhb
-kill -INT $bsim
-
 # Two controllers answering as one node id: tsectl says so, naming the node.
 tse-sim --iface vcan0 --node 5 >twin1.log 2>&1 &
 twin1=$!
