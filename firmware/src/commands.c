@@ -173,8 +173,16 @@ static void traj_commit(fw_controller *c, const proto_message *m, uint8_t functi
     const int rc = fw_traj_check_point(&th->traj, &th->geom, &th->lim, to, (uint32_t)m->v[1], last, &req->u.row.p,
                                        after, &why);
     if (fw_inbox_watch_end(c)) {
+        /* A STOP (or an ESTOP) ended the row's validation: answered first, then the row is refused
+         * as a row of the trajectory it ended, where it did (how, for the host: tse.can's Ended),
+         * else for the state. */
         stop_first(c);
-        fw_reject(c, function, seq, FW_REASON_STATE, 0, NULL);
+        fw_rows_collect(c);
+        r = fw_rows_refusal(c, m, false, &field, &where);
+        if (r == FW_REASON_ENDED)
+            fw_reject_row(c, function, seq, r, field, where);
+        else
+            fw_reject(c, function, seq, FW_REASON_STATE, 0, NULL);
         return;
     }
     if (rc != 0) {

@@ -121,6 +121,32 @@ static void test_stop_drops_queue(void **state)
     assert_status_queue_empty(FW_STATE_IDLE);
 }
 
+/* Another client's STOP arriving while a row is validated: the STOP ends the validation and is
+ * answered first; the row is refused as a row of the trajectory the STOP ended, not for the state
+ * (stopping) the STOP left, so the host knows its trajectory ended (tse.can's Ended; the VM's
+ * tests_sim saw `state`). */
+static void test_stop_during_a_rows_validation_refuses_it_ended(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    stream_and_go(30);
+    const unsigned from = F.tx_count;
+    double more[6];
+    memcpy(more, now().traj_tail, sizeof more);
+    more[2] += 0.001;
+    point(more, 50000, false); /* 50 control segments to validate: the STOP is seen meanwhile */
+    cmd(PM_STOP);
+    fw_poll(C);
+    assert_int_equal(answer(from, proto_table[PM_STOP].function, NULL), 'a');
+    const proto_message r = reject_of(from, TRAJ_FN);
+    assert_int_equal(r.v[2], FW_REASON_ENDED);
+    assert_int_equal(r.v[5], FW_TRAJ_END_STOP);
+    for (int i = 0; i < 100 && fw_state_of(C) == FW_STATE_STOPPING; ++i)
+        run(10);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
+}
+
 /* The host falls silent while streaming: a controlled stop, the fault latched, the queue gone. */
 static void test_fault_drops_queue(void **state)
 {
@@ -513,6 +539,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stop_drops_queue),
+        cmocka_unit_test(test_stop_during_a_rows_validation_refuses_it_ended),
         cmocka_unit_test(test_fault_drops_queue),
         cmocka_unit_test(test_stop_in_fault_drops_queue),
         cmocka_unit_test(test_estop_drops_queue),
