@@ -18,6 +18,9 @@ void TIM2_IRQHandler(void)
 void TIM3_IRQHandler(void);
 void TIM3_IRQHandler(void)
 {
+    const uint32_t late = TSE_TIM3->CNT; /* microseconds since the period began */
+    if (late > ticker->control_delay_max_us)
+        ticker->control_delay_max_us = late;
     TSE_TIM3->SR = 0;
     board_control();
     ++ticker->controls;

@@ -35,6 +35,10 @@ typedef struct {
     uint32_t timer_hz;          /* TIM2/TIM3 clock */
     volatile uint32_t controls; /* control interrupts taken */
     volatile uint32_t steps;    /* step interrupts taken */
+    /* The longest a control interrupt began behind its timer's period [us]: TIM3 counts
+     * microseconds from each period's start, read first thing.  A figure for a debugger (the
+     * board-emu test control_tick_delay reads it), never acted on; a debugger may clear it. */
+    volatile uint32_t control_delay_max_us;
 } board_ticker;
 
 /* The application's work in the two interrupts (called directly, not through a pointer, so that
