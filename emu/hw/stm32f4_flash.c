@@ -87,6 +87,7 @@ struct Stm32f4FlashState {
     MemoryRegion array;
     uint8_t *mem;
     qemu_irq irq;
+    qemu_irq op_out; /* FLASH_OUT_OP */
     Clock *hclk;
     QEMUTimer *timer;
     uint32_t acr, sr, cr;
@@ -163,6 +164,7 @@ static void start_op(Stm32f4FlashState *s, int op, uint32_t addr, uint32_t len, 
     s->op_end = s->op_start + ns;
     s->sr |= SR_BSY;
     timer_mod(s->timer, s->op_end);
+    qemu_irq_pulse(s->op_out);
 }
 
 /* Typical erase time (DS8626): by sector size, at x8 or at x16 and wider. */
@@ -402,6 +404,7 @@ static void flash_init(Object *obj)
     memory_region_init_io(&s->iomem, obj, &flash_reg_ops, s, "stm32f4-flash", 0x400);
     sysbus_init_mmio(SYS_BUS_DEVICE(obj), &s->iomem);
     sysbus_init_irq(SYS_BUS_DEVICE(obj), &s->irq);
+    qdev_init_gpio_out_named(DEVICE(obj), &s->op_out, FLASH_OUT_OP, 1);
     s->hclk = qdev_init_clock_in(DEVICE(obj), "hclk", hclk_changed, s, ClockUpdate);
 }
 

@@ -62,6 +62,8 @@ static void wire_rig(TseF407SocState *soc, DeviceState *rig)
     /* What the rig observes for the figures: frames the controller takes, watchdog reloads. */
     qdev_connect_gpio_out_named(soc->can1, BXCAN_OUT_RX, 0, qdev_get_gpio_in_named(rig, RIG_IN_CAN_RX, 0));
     qdev_connect_gpio_out_named(soc->iwdg, IWDG_OUT_RELOAD, 0, qdev_get_gpio_in_named(rig, RIG_IN_FEED, 0));
+    /* The flash's operations, which the rig counts and may cut with a power cycle (`cutflash`). */
+    qdev_connect_gpio_out_named(soc->flash, FLASH_OUT_OP, 0, qdev_get_gpio_in_named(rig, RIG_IN_FLASH_OP, 0));
 }
 
 static void tse_f407_init(MachineState *machine)

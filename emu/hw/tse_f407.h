@@ -63,6 +63,9 @@ static inline uint32_t tse_can_frame_bits(bool extended, bool rtr, unsigned len)
  * identifier (standard or extended), then back to 0. */
 #define BXCAN_OUT_RX "rx"
 
+/* ---- FLASH (stm32f4_flash.c) ---- */
+#define FLASH_OUT_OP "op" /* pulsed as an erase or a program operation starts, for an observer (the rig) */
+
 /* ---- IWDG (stm32f4_iwdg.c) ---- */
 #define IWDG_OUT_RESET "reset" /* pulsed when the counter reaches 0 */
 #define IWDG_OUT_RELOAD "reload" /* pulsed at every reload (KR = 0xAAAA), for an observer (the rig) */
@@ -77,6 +80,7 @@ static inline uint32_t tse_can_frame_bits(bool extended, bool rtr, unsigned len)
 #define RIG_OUT_CANERR "canerr"     /* level: `canerr on|off` */
 #define RIG_IN_CAN_RX "can-rx"      /* 1 line: bxCAN's BXCAN_OUT_RX (`firststep`) */
 #define RIG_IN_FEED "feed"          /* 1 line: the IWDG's reloads (`feedgap`) */
+#define RIG_IN_FLASH_OP "flash-op"  /* 1 line: the flash's FLASH_OUT_OP (`flashops`, `cutflash`) */
 
 /* ---- SoC (tse_f407_soc.c) ---- */
 #define SOC_IN_POWER "power-cycle" /* a pulse: RAM lost, power-on reset */

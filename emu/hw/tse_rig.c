@@ -91,6 +91,8 @@ struct TseRigState {
     int64_t feed_t;       /* the last watchdog reload (-1: none) */
     int64_t feed_gap;     /* the longest time between two reloads since the last `feedgap` */
     uint64_t feeds;
+    uint64_t flash_ops;   /* flash erase and program operations started, since the emulator started */
+    uint64_t cut_at;      /* power-cycle as operation number cut_at starts (0: not armed) */
 
     /* properties */
     uint32_t mark_id;
@@ -225,6 +227,21 @@ static void feed_in(void *opaque, int n, int level)
     ++s->feeds;
 }
 
+/* A flash operation starts: counted; the one `cutflash` named starts and the power goes (the
+ * flash model leaves what it had not done of it undone: a program not applied, an erase partial). */
+static void flash_op_in(void *opaque, int n, int level)
+{
+    TseRigState *s = opaque;
+    if (!level) {
+        return;
+    }
+    ++s->flash_ops;
+    if (s->cut_at && s->flash_ops == s->cut_at) {
+        s->cut_at = 0;
+        qemu_irq_pulse(s->power_out);
+    }
+}
+
 /* ---- the text interface ---- */
 
 static void say(TseRigState *s, const char *fmt, ...) G_GNUC_PRINTF(2, 3);
@@ -284,6 +301,15 @@ static void request(TseRigState *s, char *line)
         say(s, "feedgap %" PRId64 " %" PRIu64 "\nok\n", s->feed_gap, s->feeds);
         s->feed_gap = 0;
         s->feeds = 0;
+    } else if (!strcmp(cmd, "flashops") && argc == 1) {
+        say(s, "flashops %" PRIu64 "\nok\n", s->flash_ops);
+    } else if (!strcmp(cmd, "cutflash") && argc == 2 && !strcmp(argv[1], "off")) {
+        s->cut_at = 0;
+        say(s, "ok\n");
+    } else if (!strcmp(cmd, "cutflash") && argc == 2 && strspn(argv[1], "0123456789") == strlen(argv[1]) &&
+               strlen(argv[1]) <= 9 && atoi(argv[1]) >= 1) {
+        s->cut_at = s->flash_ops + (uint64_t)atoi(argv[1]);
+        say(s, "ok\n");
     } else if (!strcmp(cmd, "estop") && argc == 2 && (!strcmp(argv[1], "open") || !strcmp(argv[1], "closed"))) {
         s->estop_open = !strcmp(argv[1], "open");
         update_outputs(s);
@@ -310,12 +336,12 @@ static void request(TseRigState *s, char *line)
     } else if (!strcmp(cmd, "estop") || !strcmp(cmd, "canerr") || !strcmp(cmd, "switch") ||
                !strcmp(cmd, "slides") || !strcmp(cmd, "steps") || !strcmp(cmd, "time") ||
                !strcmp(cmd, "log") || !strcmp(cmd, "reset") || !strcmp(cmd, "firststep") ||
-               !strcmp(cmd, "feedgap")) {
-        say(s, "error: %s: wrong arguments (slides | steps | time | log | firststep | feedgap | reset | "
-            "estop open|closed | switch K open|closed|auto | canerr on|off)\n", cmd);
+               !strcmp(cmd, "feedgap") || !strcmp(cmd, "flashops") || !strcmp(cmd, "cutflash")) {
+        say(s, "error: %s: wrong arguments (slides | steps | time | log | firststep | feedgap | flashops | reset | "
+            "estop open|closed | switch K open|closed|auto | canerr on|off | cutflash N|off)\n", cmd);
     } else {
-        say(s, "error: unknown request '%s' (slides, steps, time, log, firststep, feedgap, reset, estop, switch, "
-            "canerr)\n", cmd);
+        say(s, "error: unknown request '%s' (slides, steps, time, log, firststep, feedgap, flashops, reset, estop, "
+            "switch, canerr, cutflash)\n", cmd);
     }
 }
 
@@ -426,6 +452,7 @@ static void rig_init(Object *obj)
     qdev_init_gpio_in_named(dev, enable_in, RIG_IN_ENABLE, 1);
     qdev_init_gpio_in_named(dev, can_rx_in, RIG_IN_CAN_RX, 1);
     qdev_init_gpio_in_named(dev, feed_in, RIG_IN_FEED, 1);
+    qdev_init_gpio_in_named(dev, flash_op_in, RIG_IN_FLASH_OP, 1);
     qdev_init_gpio_out_named(dev, s->sw_out, RIG_OUT_SWITCH, SLIDES);
     qdev_init_gpio_out_named(dev, &s->estop_out, RIG_OUT_ESTOP, 1);
     qdev_init_gpio_out_named(dev, &s->power_out, RIG_OUT_POWER, 1);

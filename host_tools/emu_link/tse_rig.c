@@ -10,6 +10,7 @@
  * answer came in time. */
 #define _POSIX_C_SOURCE 200809L /* clock_gettime */
 #include <errno.h>
+#include <stdbool.h>
 #include <poll.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,6 +31,8 @@ static const char *const help =
     "                              edge after it (virtual ns; -1: none)\n"
     "  feedgap                     the longest time between two watchdog reloads (the longest pause\n"
     "                              of the image's main loop) since the last feedgap, and how many\n"
+    "  flashops                    the flash erase and program operations since the emulator started\n"
+    "  cutflash N|off              a power cycle as the Nth flash operation from now starts (1..1e9)\n"
     "  estop open|closed           the e-stop chain\n"
     "  switch K open|closed|auto   slide K's (1..6) homing switch forced, or from its position\n"
     "  canerr on|off               the bus held in error (bus-off), or released\n"
@@ -51,12 +54,18 @@ static int one_of(const char *s, const char *a, const char *b, const char *c)
 static int check(int n, char **w)
 {
     const char *r = w[0];
-    if (one_of(r, "slides", "steps", "time") || one_of(r, "log", "reset", NULL) || one_of(r, "firststep", "feedgap", NULL))
+    if (one_of(r, "slides", "steps", "time") || one_of(r, "log", "reset", "flashops") ||
+        one_of(r, "firststep", "feedgap", NULL))
         return n == 1 ? 0 : usage_error("takes no argument", r);
     if (!strcmp(r, "estop"))
         return n == 2 && one_of(w[1], "open", "closed", NULL) ? 0 : usage_error("estop takes open or closed", NULL);
     if (!strcmp(r, "canerr"))
         return n == 2 && one_of(w[1], "on", "off", NULL) ? 0 : usage_error("canerr takes on or off", NULL);
+    if (!strcmp(r, "cutflash")) {
+        const bool count = n == 2 && w[1][0] && strlen(w[1]) <= 9 && strspn(w[1], "0123456789") == strlen(w[1]) &&
+                           strtol(w[1], NULL, 10) >= 1;
+        return count || (n == 2 && !strcmp(w[1], "off")) ? 0 : usage_error("cutflash takes a count 1..999999999 or off", NULL);
+    }
     if (!strcmp(r, "switch")) {
         if (n != 3 || strlen(w[1]) != 1 || w[1][0] < '1' || w[1][0] > '6')
             return usage_error("switch takes a slide 1..6 and open, closed or auto", NULL);

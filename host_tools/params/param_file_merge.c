@@ -72,19 +72,24 @@ static void merge_line(out_text *o, const char *line, size_t len, const fw_param
         ++v0;
     while (v1 > v0 && is_blank(line[v1 - 1]))
         --v1;
-    char key[128], value[128];
+    /* As long as the reader takes them: a value may be any length (leading zeros, long digits). */
+    char *key = malloc(k1 - k0 + 1), *value = malloc(v1 - v0 + 1);
     param_key k;
     int32_t raw;
     char err[256];
-    if (k1 - k0 >= sizeof key || v1 - v0 >= sizeof value) {
-        put(o, line, len);
-        return;
+    int known = 0;
+    if (key && value) {
+        memcpy(key, line + k0, k1 - k0);
+        key[k1 - k0] = '\0';
+        memcpy(value, line + v0, v1 - v0);
+        value[v1 - v0] = '\0';
+        known = param_lookup(key, &k) == 0 && param_from_text(&k, value, &raw, err, sizeof err) == 0;
+    } else {
+        o->failed = 1;
     }
-    memcpy(key, line + k0, k1 - k0);
-    key[k1 - k0] = '\0';
-    memcpy(value, line + v0, v1 - v0);
-    value[v1 - v0] = '\0';
-    if (param_lookup(key, &k) != 0 || param_from_text(&k, value, &raw, err, sizeof err) != 0) {
+    free(key);
+    free(value);
+    if (!known) {
         put(o, line, len); /* not reached for a file that reads */
         return;
     }

@@ -35,7 +35,8 @@ static void intro(FILE *out)
                  "a broadcast). A lower function code wins arbitration, so `ESTOP` goes first. Integers only,\n"
                  "little-endian; every message has one fixed length. A frame of the wrong length, an unknown\n"
                  "function, a field outside its range or a command the state does not accept is answered with\n"
-                 "`REJECT` naming the reason, and changes nothing.\n\n");
+                 "`REJECT` naming the reason, and changes nothing. The states, what moves the controller from\n"
+                 "one to another and what each command does in each are in [controller.md](controller.md).\n\n");
     fprintf(out, "A pose is staged in `POSE_A`, `POSE_B`, `POSE_C` under one sequence number and applied by a\n"
                  "commit (`MOVE_COMMIT` or `TRAJ_COMMIT`) carrying the same number: only when all three parts of\n"
                  "that number arrived (in any order), and only when the number is newer than the last accepted\n"
@@ -108,7 +109,8 @@ static void state_matrix(FILE *out)
 {
     fprintf(out, "\n## Which command each state accepts\n\n`A` accepted (acknowledged, except heartbeats and pose "
                  "parts), `-` refused with `state`. Motion commands also need homing (`not_homed`), and a trajectory "
-                 "point is accepted while moving only in trajectory mode.\n\n| command |");
+                 "point is accepted while moving only in trajectory mode. What an accepted command does in each state: "
+                 "[controller.md](controller.md), \"Commands in each state\".\n\n| command |");
     for (int s = 0; s < FW_STATE_COUNT; ++s)
         fprintf(out, " %s |", state_col[s]);
     fprintf(out, "\n|---|");

@@ -13,7 +13,8 @@
 
 #include "harness.h"
 
-/* Every command in every state, against the rules of system.md written out here. */
+/* Every command in every state, against docs/controller.md, "Commands in each state", written
+ * out here. */
 static void test_state_table(void **state)
 {
     (void)state;

@@ -1,7 +1,8 @@
 /* The link to the host failing, with the controller, the real plant and the rig's checks after
- * every period (sim_rig.h): a host gone silent, and the CAN controller bus-off.  system.md: host
- * silence past the watchdog timeout and a bus-off each lead to a controlled stop and a fault
- * that must be cleared; docs/protocol.md: the watchdog only while enabled. */
+ * every period (sim_rig.h): a host gone silent, and the CAN controller bus-off.
+ * docs/controller.md ("Faults", "The host watchdog"): host silence past the watchdog timeout and
+ * a bus-off each lead to a controlled stop and a fault that must be cleared; docs/protocol.md:
+ * the watchdog only while enabled. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>

@@ -1,9 +1,10 @@
 /* The machine failing, with the controller, the real plant and the rig's checks after every
  * period (sim_rig.h): a limit switch tripped mid-move, the e-stop opened at random instants, a
- * slide that stalls.  system.md: a limit switch hit outside homing leads to a controlled stop and
- * a fault that must be cleared; e-stop cuts stepping at once.  And what the controller cannot do:
- * it has no position feedback, so a stalled slide goes unnoticed unless its homing switch comes
- * to disagree with the count by more than 0.5 mm (docs/protocol.md, HOME). */
+ * slide that stalls.  docs/controller.md ("Faults", "E-stop"): a limit switch hit outside homing
+ * leads to a controlled stop and a fault that must be cleared; e-stop cuts stepping at once.  And
+ * what the controller cannot do: it has no position feedback, so a stalled slide goes unnoticed
+ * unless its homing switch comes to disagree with the count by more than 0.5 mm (docs/protocol.md,
+ * HOME). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>

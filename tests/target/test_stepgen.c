@@ -17,7 +17,8 @@
  * - a halt (the e-stop interrupt's half) stops the pulses from the next tick on.
  * The capacity is computed here from its definition (ticks, less the set-up on a reversal,
  * divided by the interval).  The board's own configuration comes from the parameter defaults
- * (dir_setup_ns, step_rate_max) converted the way system.md states: rounded up to whole ticks. */
+ * (dir_setup_ns, step_rate_max) rounded up to whole ticks (docs/controller.md, "Step timing in
+ * ticks"; the firmware's own configuration has one tick of DIR set-up more, fw_dir_setup_ticks). */
 #include <stdint.h>
 #include <string.h>
 

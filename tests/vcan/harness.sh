@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs a scenario on a CAN bus: on vcan0 directly where this kernel has vcan (as root), otherwise
-# inside a stock Debian kernel booted under QEMU (this machine's kernel has no CAN; see system.md).
+# inside a stock Debian kernel booted under QEMU (this machine's kernel has no CAN; see
+# docs/harness.md).
 #
 #   harness.sh [--file PATH]... [--python DIR]... SCENARIO WORKDIR [BINARY...]
 #

@@ -1,4 +1,4 @@
-/* The controller: the state machine of docs/protocol.md, the CAN command handling, and the
+/* The controller: the state machine of docs/controller.md, the CAN command handling, and the
  * execution of motion at the control segment rate.  Hardware-free: everything physical goes
  * through fw_hal.  How a platform runs it (its contexts and their order): fw/runtime.h.
  *

@@ -1,6 +1,6 @@
 /* The controller (firmware/) on the fake HAL, fed any sequence of frames, time and events decoded
  * from the fuzzer's bytes; after every frame, poll, control tick and step pulse the oracle
- * (oracle.h) holds it to system.md's controller behaviour and docs/protocol.md.
+ * (oracle.h) holds it to docs/controller.md (the controller's behaviour) and docs/protocol.md.
  *
  * Encoding (make_seeds.py writes seeds in it; change both together).  Byte 0 picks the fixture
  * (rig.h, modulo RIG_FIXTURES); then operations, each an opcode byte (modulo OP_COUNT) and its

@@ -14,8 +14,9 @@
 
 #define BIT(s) (1u << (s))
 
-/* The transitions system.md's controller behaviour and docs/protocol.md allow (bit `to` of
- * next_states[from]); an e-stop (command, input or interrupt) may come in any state after boot.
+/* The transitions docs/controller.md ("How the state changes") and docs/protocol.md allow (bit
+ * `to` of next_states[from]); an e-stop (command, input or interrupt) may come in any state after
+ * boot.
  *  boot: enters disabled once initialised.
  *  disabled: ENABLE energises (idle); a bus-off or a fault the platform reports latches a fault
  *    (nothing moves, so there is no stop to run first).
@@ -323,7 +324,7 @@ void oracle_after_control(rig *r)
     fw_inspect(r->c, &in);
     const fw_inspection *c = &in;
     /* The control tick supervises first: an e-stop input open before it began has put the
-     * controller in ESTOP by now (system.md: e-stop cuts stepping at once). */
+     * controller in ESTOP by now (docs/controller.md, "E-stop": it cuts stepping at once). */
     FUZZ_CHECK(!r->f.estop_open || o.cut_inside || c->state == FW_STATE_ESTOP);
     o.estop_read = r->f.estop_open;
     o.passive_read = r->f.can_state.error_passive;

@@ -1,4 +1,4 @@
-/* The controller fuzz target's judge: what ../shared/spec/system.md ("Controller behaviour") and
+/* The controller fuzz target's judge: what docs/controller.md (the controller's behaviour) and
  * docs/protocol.md promise, checked after every frame, poll, control tick and step pulse (the
  * rig calls these at those points).  A broken promise aborts through FUZZ_CHECK.
  *

@@ -40,8 +40,8 @@ void plant_check_dir(const rig *r, uint8_t forward_mask)
 void plant_check_pulse(const rig *r, uint8_t mask, bool estop_cut)
 {
     const fw_state s = fw_state_of(r->c);
-    /* system.md: stepping only moves a robot that is homing, moving or stopping, through energised
-     * drives; an e-stop cuts it at once, from the interrupt on. */
+    /* docs/controller.md ("States", "E-stop"): stepping only moves a robot that is homing, moving
+     * or stopping, through energised drives; an e-stop cuts it at once, from the interrupt on. */
     FUZZ_CHECK((mask & ~0x3Fu) == 0);
     FUZZ_CHECK(r->f.enabled);
     FUZZ_CHECK(s == FW_STATE_HOMING || s == FW_STATE_MOVING || s == FW_STATE_STOPPING);
@@ -67,8 +67,8 @@ void plant_check_pulse(const rig *r, uint8_t mask, bool estop_cut)
 void plant_check_stroke(const rig *r)
 {
     /* Once homed the controller knows where the slides are, and none may leave [s_min, s_max]
-     * (system.md: never beyond stroke), read on the plant's true step count with the parameters
-     * in force, give or take the one step of rounding a setpoint to whole steps.
+     * (docs/controller.md, "What motion keeps to"), read on the plant's true step count with the
+     * parameters in force, give or take the one step of rounding a setpoint to whole steps.
      * Before the zero nothing can be promised of the stroke: homing moves the slides blind, down
      * to their switches (a slide brakes past its switch, and a switch may sit at s_min), and a
      * slide that starts on its switch goes up homing_backoff past the release first, which may
@@ -90,9 +90,10 @@ void plant_check_stroke(const rig *r)
 
 void plant_check_segment(const rig *r)
 {
-    /* The slide speed limit (system.md: the plant checks a slide is never above it), measured as
-     * the steps over one segment period: slide_vmax in steps per segment, plus the rounding of the
-     * setpoints to whole steps and a window that straddles two segments (two steps), plus one. */
+    /* The slide speed limit (docs/controller.md, "What the simulator's plant checks": no slide
+     * above it), measured as the steps over one segment period: slide_vmax in steps per segment,
+     * plus the rounding of the setpoints to whole steps and a window that straddles two segments
+     * (two steps), plus one. */
     const double per_segment = (double)pc.p.v[FP_SLIDE_VMAX] * 1e-6 * (double)pc.p.v[FP_STEPS_PER_M] /
                                (double)r->cfg.segment_hz;
     const int64_t bound = (int64_t)per_segment + 3;

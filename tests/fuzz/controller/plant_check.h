@@ -1,7 +1,7 @@
-/* What the plant sees, judged as system.md's simulator judges a real robot: the stroke, the slide
- * speed, the step rate and the DIR set-up, and no step without energised drives in a state that
- * moves the robot.  Fed from the rig's stepper wrapper (every pulse and direction write) and at
- * every control-segment boundary. */
+/* What the plant sees, judged as the simulator's plant judges a real robot (docs/controller.md,
+ * "What the simulator's plant checks"): the stroke, the slide speed, the step rate and the DIR
+ * set-up, and no step without energised drives in a state that moves the robot.  Fed from the
+ * rig's stepper wrapper (every pulse and direction write) and at every control-segment boundary. */
 #ifndef FUZZ_CONTROLLER_PLANT_CHECK_H
 #define FUZZ_CONTROLLER_PLANT_CHECK_H
 
