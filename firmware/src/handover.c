@@ -130,6 +130,11 @@ void fw_handover_take(fw_controller *c)
     memset(&v, 0, sizeof v);
     v.start = FW_START_REST;
     v.reason = fw_command_allowed(s->req.msg, c->tick.state);
+    /* A row of a trajectory the tick ended (its rows ran out, a fault) after the thread judged the
+     * row: refused `ended` whatever the state it left (docs/protocol.md), as the thread refuses
+     * the rows that come after it; the thread says how it ended. */
+    if (s->req.msg == PM_TRAJ_COMMIT && !s->req.u.row.first && !c->tick.traj_open)
+        v.reason = FW_REASON_ENDED;
     if (v.reason == FW_REASON_NONE)
         apply(c, &s->req, &v);
     s->verdict = v;

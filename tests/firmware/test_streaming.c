@@ -219,6 +219,46 @@ static void test_underrun_drops_queue(void **state)
     assert_status_queue_empty(FW_STATE_FAULT);
 }
 
+/* The control tick alone (the thread preempted), a period at a time, until the underrun's fault. */
+static void ticks_until_fault(void *arg, fake_hook_point at)
+{
+    (void)arg;
+    if (at != FAKE_AT_RECEIVE || F.rx_count > 0)
+        return; /* the row's frames are still being read */
+    F.hook = NULL;
+    for (int ms = 0; ms < 2000 && fw_state_of(C) != FW_STATE_FAULT; ++ms) {
+        F.now_us += 1000u;
+        fw_control_tick(C);
+        for (int k = 0; k < 100; ++k)
+            fw_step_tick(C);
+    }
+}
+
+/* A row the thread has read and is validating when the tick's underrun ends the trajectory: at the
+ * hand-over the tick refuses it `ended`, saying how, as every later row of it (it was `state`: the
+ * fault the underrun left, which the state table refuses rows in). */
+static void test_row_in_the_hand_over_when_the_tick_ends_it_is_refused_ended(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    stream_and_go(12);
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
+    const unsigned from = F.tx_count;
+    double more[6];
+    memcpy(more, now().traj_tail, sizeof more);
+    more[2] += 0.001;
+    point(more, 50000, false);
+    /* Once its frames are read, while it is validated, the tick runs until the queue has run out. */
+    F.hook = ticks_until_fault;
+    fw_poll(C);
+    assert_null(F.hook);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_UNDERRUN);
+    const proto_message r = reject_of(from, TRAJ_FN);
+    assert_int_equal(r.v[2], FW_REASON_ENDED);
+    assert_int_equal(r.v[5], FW_TRAJ_END_FAULT + 16 * FW_FAULT_UNDERRUN);
+    assert_status_queue_empty(FW_STATE_FAULT);
+}
+
 /* One millisecond with the host alive (a heartbeat every 10). */
 static void one_ms(void)
 {
@@ -540,6 +580,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stop_drops_queue),
         cmocka_unit_test(test_stop_during_a_rows_validation_refuses_it_ended),
+        cmocka_unit_test(test_row_in_the_hand_over_when_the_tick_ends_it_is_refused_ended),
         cmocka_unit_test(test_fault_drops_queue),
         cmocka_unit_test(test_stop_in_fault_drops_queue),
         cmocka_unit_test(test_estop_drops_queue),
