@@ -47,6 +47,7 @@ typedef struct {
     tse_real mark[6];   /* travel where the slide's phase began (leaving: where it released) */
     int32_t start_steps[6];
     int32_t edge_steps[6]; /* steps emitted when the release edge was seen */
+    uint32_t path_ask;     /* HOME_PATH_CHECK: the number it asked the thread's check by (0: not yet) */
 } fw_homing;
 
 /* A joint-space move (after homing, the robot is not yet at a pose the planner can start from). */
@@ -189,6 +190,12 @@ typedef struct {
     _Atomic uint32_t bus_read_us;
     /* The thread's progress (fw_thread_progress). */
     _Atomic uint32_t progress;
+    /* Homing's final move's path, checked in the thread (homing.h): the tick writes path_from and
+     * then bumps path_asked (release); the thread checks, writes path_ok and then stores
+     * path_asked in path_answered (release).  The tick writes path_from only when the two agree. */
+    _Atomic uint32_t path_asked, path_answered;
+    tse_real path_from[6];
+    bool path_ok;
     /* fw_estop_isr ran; the tick still to complete it (fw_estop). */
     atomic_bool estop_request;
 } fw_shared;

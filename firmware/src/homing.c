@@ -10,9 +10,13 @@
  *           last pressed one, is s = home_sw_k plus one step;
  *   DONE.
  * So homing takes the distances at the homing speed; only the braking distance and the switch's
- * hysteresis are crept.  Joint speeds ramp within the slide acceleration limit throughout, so a
+ * hysteresis are crept.  At rest on the edges, the zero is set and the thread checks the joint
+ * move's path (a quarter of a million instructions on the board: not in the control tick) before
+ * it starts.  Joint speeds ramp within the slide acceleration limit throughout, so a
  * stop or fault can bring homing to rest at any moment. */
 #include "homing.h"
+
+#include <stdatomic.h>
 
 #include "fw/joint_path.h"
 #include "steps.h"
@@ -76,13 +80,13 @@ static void homing_fault(fw_controller *c)
     c->tick.home.abort = true;
 }
 
-/* False, with nothing started, when the joint move's path fails its check. */
-static bool start_joint_move(fw_controller *c)
+/* At rest on the switches' edges: the zero, and the joint move's ends; its path goes to the thread
+ * for its check (fw_homing_check_path). */
+static void await_path_check(fw_controller *c)
 {
     fw_homing *h = &c->tick.home;
     int32_t now[6];
     stepgen_positions(&c->sg, now); /* at rest: every pushed step is out */
-    tse_real longest = TSE_R(0.0);
     const tse_real spm = (tse_real)c->tick.params.v[FP_STEPS_PER_M];
     for (int k = 0; k < 6; ++k) {
         /* The edge step is one above home_sw_k; what came after it counts on from there. */
@@ -90,28 +94,79 @@ static bool start_joint_move(fw_controller *c)
         c->tick.joint.from[k] = (tse_real)now[k] / spm;
         c->tick.joint.to[k] = c->tick.geom.home_s;
         c->tick.q[k] = c->tick.q_prev[k] = c->tick.joint.from[k];
+    }
+    stepgen_set_position(&c->sg, now); /* the zero: from here on steps count from s = 0 */
+    h->phase = HOME_PATH_CHECK;
+    h->path_ask = 0;
+}
+
+/* Asks the thread to check the joint move's path, once its answer to any earlier ask is in (a
+ * homing stopped while its check ran leaves one behind). */
+static void ask_path_check(fw_controller *c)
+{
+    fw_shared *s = &c->sh;
+    const uint32_t asked = atomic_load_explicit(&s->path_asked, memory_order_relaxed);
+    if (atomic_load_explicit(&s->path_answered, memory_order_acquire) != asked)
+        return;
+    for (int k = 0; k < 6; ++k)
+        s->path_from[k] = c->tick.joint.from[k];
+    c->tick.home.path_ask = asked + 1u ? asked + 1u : 1u;
+    atomic_store_explicit(&s->path_asked, c->tick.home.path_ask, memory_order_release);
+}
+
+void fw_homing_check_path(fw_controller *c)
+{
+    fw_shared *s = &c->sh;
+    const uint32_t asked = atomic_load_explicit(&s->path_asked, memory_order_acquire);
+    if (asked == atomic_load_explicit(&s->path_answered, memory_order_relaxed))
+        return;
+    /* Validated as any move is before its first step (the parameter check has checked it from the
+     * switches themselves, fw_params_judge), with the thread's copy of the tick's parameters. */
+    tse_real where;
+    int scissor;
+    s->path_ok = fw_joint_path_check(&c->th.geom, s->path_from, &where, &scissor) == TSE_OK;
+    atomic_store_explicit(&s->path_answered, asked, memory_order_release);
+}
+
+/* The joint move from the switches' edges to the home pose, its path checked. */
+static void start_joint_move(fw_controller *c)
+{
+    tse_real longest = TSE_R(0.0);
+    for (int k = 0; k < 6; ++k) {
         const tse_real d = tse_fabs(c->tick.joint.to[k] - c->tick.joint.from[k]);
         if (d > longest)
             longest = d;
     }
-    stepgen_set_position(&c->sg, now); /* the zero: from here on steps count from s = 0 */
-    /* Validated as any move is before its first step (the parameter check has checked it from the
-     * switches themselves, fw_params_judge). */
-    tse_real where;
-    int scissor;
-    if (fw_joint_path_check(&c->tick.geom, c->tick.joint.from, &where, &scissor) != TSE_OK)
-        return false;
     const tse_real n = longest > TSE_R(0.0) ? longest : TSE_R(1.0);
     const tse_real jerk = c->tick.lim.slide_amax * c->tick.lim.plate_jmax / c->tick.lim.plate_amax;
     fw_profile_plan(&c->tick.joint.prof, longest > TSE_R(0.0) ? TSE_R(1.0) : TSE_R(0.0),
                     TSE_R(0.9) * c->tick.lim.slide_vmax / n, TSE_R(0.9) * c->tick.lim.slide_amax / n, jerk / n,
                     TSE_R(0.0));
-    h->phase = HOME_TO_POSE;
+    c->tick.home.phase = HOME_TO_POSE;
     c->tick.tau = TSE_R(0.0);
     c->tick.segments_run = 0;
     c->tick.stopping = false;
     c->tick.src = FW_SRC_JOINT;
-    return true;
+}
+
+/* HOME_PATH_CHECK: asked, then waiting for the answer; a stop or a fault meanwhile ends homing. */
+static fw_homing_outcome path_check_tick(fw_controller *c)
+{
+    fw_homing *h = &c->tick.home;
+    if (h->abort)
+        return finish(c, false);
+    if (h->path_ask == 0) {
+        ask_path_check(c);
+        return FW_HOMING_GOING;
+    }
+    if (atomic_load_explicit(&c->sh.path_answered, memory_order_acquire) != h->path_ask)
+        return FW_HOMING_GOING;
+    if (!c->sh.path_ok) {
+        c->tick.pending_fault = FW_FAULT_HOMING;
+        return finish(c, false);
+    }
+    start_joint_move(c);
+    return FW_HOMING_GOING;
 }
 
 typedef struct {
@@ -195,6 +250,8 @@ fw_homing_outcome fw_homing_tick(fw_controller *c)
         c->tick.pose_known = true;
         return finish(c, true);
     }
+    if (h->phase == HOME_PATH_CHECK)
+        return path_check_tick(c);
     if (stepgen_queued(&c->sg) >= 2u)
         return FW_HOMING_GOING;
 
@@ -243,9 +300,7 @@ fw_homing_outcome fw_homing_tick(fw_controller *c)
     /* At rest: on to the home pose, or the end. */
     if (h->abort)
         return finish(c, false);
-    if (done && !start_joint_move(c)) {
-        c->tick.pending_fault = FW_FAULT_HOMING;
-        return finish(c, false);
-    }
+    if (done)
+        await_path_check(c);
     return FW_HOMING_GOING;
 }

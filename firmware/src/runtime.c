@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "control.h"
 #include "controller_internal.h"
+#include "homing.h"
 #include "inbox.h"
 #include "publish.h"
 #include "state.h"
@@ -26,6 +27,8 @@ void fw_control_tick(fw_controller *c)
 void fw_poll(fw_controller *c)
 {
     atomic_fetch_add_explicit(&c->sh.progress, 1u, memory_order_relaxed);
+    /* Homing's path check, if the tick waits for it (not in the tick: homing.h). */
+    fw_homing_check_path(c);
     fw_view_read(c);
     /* How a trajectory ended goes out before any row of the next is taken. */
     fw_rows_collect(c);

@@ -6,9 +6,10 @@
 /* What the control tick runs. */
 typedef enum { FW_SRC_NONE, FW_SRC_MOVE, FW_SRC_TRAJ, FW_SRC_JOINT } fw_source;
 
-/* Homing: first every slide finds its switch on its own (HOME_SWITCHES), then all six go to the
- * home pose together (HOME_TO_POSE). */
-typedef enum { HOME_SWITCHES, HOME_TO_POSE } fw_home_phase;
+/* Homing: first every slide finds its switch on its own (HOME_SWITCHES), then, at rest, the path
+ * to the home pose is checked by the controller's thread (HOME_PATH_CHECK), then all six go to
+ * the home pose together (HOME_TO_POSE). */
+typedef enum { HOME_SWITCHES, HOME_PATH_CHECK, HOME_TO_POSE } fw_home_phase;
 
 /* One slide while finding its switch. */
 typedef enum {
