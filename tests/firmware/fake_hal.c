@@ -161,6 +161,15 @@ void fake_run(fake_hal *f, fw_controller *c, uint32_t ms)
     }
 }
 
+void fake_tick_alone(fake_hal *f, fw_controller *c)
+{
+    const fw_config *cfg = fw_config_of(c);
+    f->now_us += 1000000u / cfg->segment_hz;
+    fw_control_tick(c);
+    for (uint32_t k = 0; k < cfg->step_hz / cfg->segment_hz; ++k)
+        fw_step_tick(c);
+}
+
 const hal_can_frame *fake_last(const fake_hal *f, uint8_t function, unsigned from)
 {
     for (unsigned i = f->tx_count; i > from; --i)

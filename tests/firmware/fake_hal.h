@@ -67,6 +67,10 @@ void fake_send_msg(fake_hal *f, uint8_t node, proto_msg m, const int32_t *values
  * (fw_run_period), the clock advanced after each. */
 void fake_run(fake_hal *f, fw_controller *c, uint32_t ms);
 
+/* One control period with only the control tick and its step ticks running, as when the
+ * controller's thread is not scheduled (no fw_poll): the clock advanced first. */
+void fake_tick_alone(fake_hal *f, fw_controller *c);
+
 /* The newest frame the controller sent with this function code (NULL if none), searching from
  * index `from`. */
 const hal_can_frame *fake_last(const fake_hal *f, uint8_t function, unsigned from);

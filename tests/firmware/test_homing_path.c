@@ -43,15 +43,11 @@ static void test_default_switches_home(void **state)
     assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
 }
 
-/* Control ticks alone, as when the thread does not run (a period each). */
+/* Control periods alone, as when the thread does not run. */
 static void ticks_alone(unsigned n)
 {
-    for (unsigned i = 0; i < n; ++i) {
-        F.now_us += 1000u;
-        fw_control_tick(C);
-        for (int k = 0; k < 100; ++k)
-            fw_step_tick(C);
-    }
+    for (unsigned i = 0; i < n; ++i)
+        fake_tick_alone(&F, C);
 }
 
 /* Homing until the slides rest on their switches' edges and the path waits for its check. */

@@ -274,10 +274,7 @@ static void ticks_alone(uint32_t ms, bool host_alive)
     for (uint32_t t = 0; t < ms; ++t) {
         if (host_alive && t % 10u == 0)
             heartbeat();
-        F.now_us += 1000;
-        fw_control_tick(C);
-        for (int k = 0; k < 100; ++k)
-            fw_step_tick(C);
+        fake_tick_alone(&F, C);
     }
 }
 

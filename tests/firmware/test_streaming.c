@@ -75,6 +75,19 @@ static void ends_at(const double p[6])
         assert_true(fabs(now().pose[k] - p[k]) < 1e-9);
 }
 
+/* The row sent since tx index `from` refused `ended`, by the STOP that ended its trajectory; the
+ * robot then comes to rest, idle, no fault. */
+static void refused_ended_by_the_stop(unsigned from)
+{
+    const proto_message r = reject_of(from, TRAJ_FN);
+    assert_int_equal(r.v[2], FW_REASON_ENDED);
+    assert_int_equal(r.v[5], FW_TRAJ_END_STOP);
+    for (int i = 0; i < 100 && fw_state_of(C) == FW_STATE_STOPPING; ++i)
+        run(10);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
+}
+
 static void test_stop_drops_queue(void **state)
 {
     (void)state;
@@ -90,13 +103,7 @@ static void test_stop_drops_queue(void **state)
     more[2] += 0.001;
     point(more, 50000, false);
     fw_poll(C);
-    const proto_message r = reject_of(from, TRAJ_FN);
-    assert_int_equal(r.v[2], FW_REASON_ENDED);
-    assert_int_equal(r.v[5], FW_TRAJ_END_STOP);
-    for (int i = 0; i < 100 && fw_state_of(C) == FW_STATE_STOPPING; ++i)
-        run(10);
-    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
-    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
+    refused_ended_by_the_stop(from);
     assert_int_equal(now().traj_depth, 0);
     assert_status_queue_empty(FW_STATE_IDLE);
 
@@ -138,13 +145,7 @@ static void test_stop_during_a_rows_validation_refuses_it_ended(void **state)
     cmd(PM_STOP);
     fw_poll(C);
     assert_int_equal(answer(from, proto_table[PM_STOP].function, NULL), 'a');
-    const proto_message r = reject_of(from, TRAJ_FN);
-    assert_int_equal(r.v[2], FW_REASON_ENDED);
-    assert_int_equal(r.v[5], FW_TRAJ_END_STOP);
-    for (int i = 0; i < 100 && fw_state_of(C) == FW_STATE_STOPPING; ++i)
-        run(10);
-    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
-    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
+    refused_ended_by_the_stop(from);
 }
 
 /* The host falls silent while streaming: a controlled stop, the fault latched, the queue gone. */
@@ -226,12 +227,8 @@ static void ticks_until_fault(void *arg, fake_hook_point at)
     if (at != FAKE_AT_RECEIVE || F.rx_count > 0)
         return; /* the row's frames are still being read */
     F.hook = NULL;
-    for (int ms = 0; ms < 2000 && fw_state_of(C) != FW_STATE_FAULT; ++ms) {
-        F.now_us += 1000u;
-        fw_control_tick(C);
-        for (int k = 0; k < 100; ++k)
-            fw_step_tick(C);
-    }
+    for (int ms = 0; ms < 2000 && fw_state_of(C) != FW_STATE_FAULT; ++ms)
+        fake_tick_alone(&F, C);
 }
 
 /* A row the thread has read and is validating when the tick's underrun ends the trajectory: at the
