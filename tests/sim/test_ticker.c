@@ -201,7 +201,7 @@ static void test_hand_over_lets_one_late_period_run(void **state)
 
 /* The tick stalls five times (every 50 periods for 10 ms) beside a controller's thread that never
  * looks at the bus: busy (spinning, as on a long validation) or blocked elsewhere (asleep). */
-static void run_beside(bus *b, posix_ticker *t, uint32_t late_wait_us, bool busy)
+static void start_beside(bus *b, posix_ticker *t, uint32_t late_wait_us)
 {
     memset(b, 0, sizeof *b);
     b->stall_every = 50;
@@ -209,6 +209,11 @@ static void run_beside(bus *b, posix_ticker *t, uint32_t late_wait_us, bool busy
     b->t = t;
     const posix_ticker_config cfg = {HZ, HZ, control, step, b, late_wait_us, -1};
     assert_int_equal(posix_ticker_start(t, &cfg), 0);
+}
+
+static void run_beside(bus *b, posix_ticker *t, uint32_t late_wait_us, bool busy)
+{
+    start_beside(b, t, late_wait_us);
     while (atomic_load(&b->calls) < 5u * 50u + 1u)
         if (!busy)
             sleep_us(10000);
@@ -240,12 +245,7 @@ static void test_hand_over_ends_a_busy_stretch(void **state)
     (void)state;
     static bus b;
     static posix_ticker t;
-    memset(&b, 0, sizeof b);
-    b.stall_every = 50;
-    b.stall_us = 10000;
-    b.t = &t;
-    const posix_ticker_config cfg = {HZ, HZ, control, step, &b, 20000u, -1};
-    assert_int_equal(posix_ticker_start(&t, &cfg), 0);
+    start_beside(&b, &t, 20000u);
     while (__atomic_load_n(&t.late_timeouts, __ATOMIC_RELAXED) == 0) {
     }
     posix_ticker_await(&t); /* handed over, taken by the next call */
