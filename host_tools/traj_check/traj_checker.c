@@ -38,6 +38,6 @@ int traj_checker_push(traj_checker *c, uint32_t dt_us, const double pose[6], boo
 
 void traj_checker_peaks(const traj_checker *c, double *v_peak, double *a_peak)
 {
-    *v_peak = (double)c->t.chk.v_ratio;
-    *a_peak = (double)c->t.chk.a_ratio;
+    *v_peak = (double)c->t.check.chk.v_ratio;
+    *a_peak = (double)c->t.check.chk.a_ratio;
 }
