@@ -1,14 +1,18 @@
 /* tse-fw: the controller firmware on its board (STM32F405/407).
  *
- * The same firmware as the simulator (host_tools/tse_sim), on hal/stm32f4: start-up faults are
- * recorded and reported rather than hung on; the step interrupt (TIM2) runs the step generator;
- * the main loop runs each control tick (TIM3) - frames in and out, supervision, the next segment
- * - then feeds the watchdog; the e-stop input interrupts whatever runs and halts stepping itself.
- * Everything the controller holds changes in the main loop's context only, so there is no lock. */
+ * The same firmware as the simulator (host_tools/tse_sim), on hal/stm32f4, in the contexts of
+ * fw/runtime.h: start-up faults are recorded and reported rather than hung on; the step interrupt
+ * (TIM2) runs the step generator; the control interrupt (TIM3, below it, above CAN) runs each
+ * control tick - supervision, what the thread handed over, the next segment - and feeds the
+ * watchdog; the main loop is the controller's thread - frames in and out, planning, validation;
+ * the e-stop input interrupts whatever runs and halts stepping itself.  What passes between the
+ * thread and the tick passes through the firmware's hand-over, which needs no lock. */
 #include <string.h>
 
 #include "fw/controller.h"
 #include "fw/limits.h"
+#include "fw/proto_table.h"
+#include "fw/runtime.h"
 #include "hal_stm32f4/board_io.h"
 #include "hal_stm32f4/bootline.h"
 #include "hal_stm32f4/bxcan.h"
@@ -28,8 +32,9 @@
 /* The rates fw/limits.h promises the host tools (tsectl judges paths and sets with them). */
 #define CONTROL_HZ FW_SEGMENT_HZ
 #define STEP_HZ FW_STEP_HZ
-/* Longer than the longest pause of the main loop: validating a 5 s move takes about 120 ms
- * (scripts/target_bench.sh), a parameter save's sector erase feeds the watchdog itself. */
+/* The control tick feeds the watchdog while the thread proves progress (fw_thread_progress: every
+ * poll, every few pieces of a validation), so a stuck tick or a stuck main loop lets it bite; a
+ * parameter save's sector erase feeds it itself. */
 #define WATCHDOG_MS 2000u
 
 /* A host streaming a trajectory may have PROTO_TRAJ_WINDOW rows of four frames in flight: they
@@ -38,7 +43,8 @@ _Static_assert(4u * PROTO_TRAJ_WINDOW <= CAN_RING_CAPACITY / 2u, "trajectory win
 
 /* Everything the board holds, in one place a debugger (and the boot test) can read. */
 typedef struct {
-    fw_controller fw;
+    fw_controller_mem fw_mem;
+    fw_controller *fw;           /* in fw_mem */
     board_ticker ticker;
     bxcan_dev can;
     param_log store;
@@ -47,6 +53,10 @@ typedef struct {
     uint32_t boot_faults;        /* BOOT_FAULT_* bits */
     int can_status;              /* bxcan_init's answer */
     uint32_t control_calls;
+    fw_state state;              /* the controller's, as of the last control tick (for a debugger) */
+    fw_fault fault;
+    uint32_t fed_progress;       /* the thread's progress when the watchdog was last fed */
+    volatile bool feed;          /* the control tick feeds the watchdog (a debugger clears it) */
 } board_state;
 
 enum {
@@ -84,26 +94,42 @@ static void on_estop(void *arg)
     fw_estop_isr(arg);
 }
 
-static void step(void *arg)
+void board_step(void)
 {
-    board_state *b = arg;
-    fw_step_tick(&b->fw);
+    fw_step_tick(tse_board.fw);
 }
 
-static void control(void *arg)
+void board_control(void)
 {
-    board_state *b = arg;
-    fw_poll(&b->fw);
-    fw_control_tick(&b->fw);
+    board_state *b = &tse_board;
+    fw_control_tick(b->fw);
     ++b->control_calls;
     /* On the internal oscillator every timing is off (and the step interrupt runs slowed): the
      * hardware fault comes back at once if cleared, until a restart finds the crystal. */
-    if ((b->boot_faults & BOOT_FAULT_CLOCK) && b->fw.state != FW_STATE_FAULT && b->fw.state != FW_STATE_ESTOP)
-        fw_report_fault(&b->fw, FW_FAULT_HARDWARE);
+    fw_state s = fw_state_of(b->fw);
+    if ((b->boot_faults & BOOT_FAULT_CLOCK) && s != FW_STATE_FAULT && s != FW_STATE_ESTOP) {
+        fw_report_fault(b->fw, FW_FAULT_HARDWARE);
+        s = fw_state_of(b->fw);
+    }
+    b->state = s;
+    b->fault = fw_fault_of(b->fw);
     /* The status LED: steady while enabled, a 1 Hz blink otherwise, fast in a fault. */
-    const uint32_t period = b->fw.state == FW_STATE_FAULT || b->fw.state == FW_STATE_ESTOP ? 200u : 1000u;
-    const bool on = b->fw.drives_on || (b->control_calls % period) < period / 2u;
+    const uint32_t period = s == FW_STATE_FAULT || s == FW_STATE_ESTOP ? 200u : 1000u;
+    const bool on = fw_drives_of(b->fw) || (b->control_calls % period) < period / 2u;
     PIN_LED_PORT->BSRR = on ? 1u << PIN_LED : 1u << (PIN_LED + 16u);
+    const uint32_t progress = fw_thread_progress(b->fw);
+    if (b->feed && progress != b->fed_progress) {
+        b->fed_progress = progress;
+        board_iwdg_feed();
+    }
+}
+
+/* The thread waits for the control tick to take what it handed over: the tick's interrupt wakes
+ * it within a control period. */
+static void await_tick(void *ctx)
+{
+    (void)ctx;
+    __asm__ volatile("wfi" ::: "memory");
 }
 
 /* One line on USART1 (PA9) saying what the start-up found (bootline.h). */
@@ -160,15 +186,15 @@ int main(void)
         b->boot_faults |= BOOT_FAULT_STORAGE;
     hal.storage = param_log_hal(&b->store);
 
-    /* No blending: its validation would hold the main loop, and with it the control tick. */
-    const fw_config cfg = {TSE_BOARD_NODE, CONTROL_HZ, STEP_HZ, true};
-    if (fw_init(&b->fw, &hal, &cfg) != 0)
+    const fw_config cfg = {TSE_BOARD_NODE, CONTROL_HZ, STEP_HZ, await_tick, NULL};
+    b->fw = fw_init(&b->fw_mem, &hal, &cfg);
+    if (!b->fw)
         board_unexpected_irq(); /* a configuration that cannot run: record and stop */
 
     /* CAN at the stored bit rate (a change takes effect here, after a save and a restart).  A
      * controller that has not yet seen an idle bus joins it by itself later: not a fault. */
     b->can_status = bxcan_init(&b->can, TSE_CAN1, b->clocks.apb1_hz,
-                               (uint32_t)b->fw.params.v[FP_CAN_KBPS] * 1000u, TSE_BOARD_NODE, 0);
+                               (uint32_t)fw_params_of(b->fw)->v[FP_CAN_KBPS] * 1000u, TSE_BOARD_NODE, 0);
     if (b->can_status == BXCAN_OK || b->can_status == BXCAN_ERR_LEAVE_INIT) {
         tse_nvic_enable(IRQ_CAN1_RX0, PRIO_CAN);
         tse_nvic_enable(IRQ_CAN1_TX, PRIO_CAN);
@@ -183,15 +209,21 @@ int main(void)
     /* The controller refuses to move until a hardware fault is cleared: a clock on the internal
      * oscillator or a CAN controller that never synchronised changes every timing it relies on. */
     if (b->boot_faults)
-        fw_report_fault(&b->fw, FW_FAULT_HARDWARE);
-    board_estop_irq_init(on_estop, &b->fw);
+        fw_report_fault(b->fw, FW_FAULT_HARDWARE);
+    b->state = fw_state_of(b->fw);
+    b->fault = fw_fault_of(b->fw);
+    board_estop_irq_init(on_estop, b->fw);
     boot_line(b);
 
+    b->feed = true;
     b->ticker.timer_hz = b->clocks.apb1_timer_hz;
-    b->ticker.idle = board_iwdg_feed;
-    hal_ticker t = board_ticker_hal(&b->ticker);
     /* At 16 MHz a 200 kHz step interrupt would leave the main loop nothing: a tenth of it keeps
      * the board alive and inspectable while it cannot move anyway. */
-    t.start(t.ctx, CONTROL_HZ, control, b->clocks.failed ? STEP_HZ / 10u : STEP_HZ, step, b);
-    board_unexpected_irq(); /* the main loop never returns */
+    if (board_ticker_start(&b->ticker, CONTROL_HZ, b->clocks.failed ? STEP_HZ / 10u : STEP_HZ) != 0)
+        board_unexpected_irq();
+    /* The controller's thread: what came and what is due, then sleep until an interrupt. */
+    for (;;) {
+        fw_poll(b->fw);
+        __asm__ volatile("wfi" ::: "memory");
+    }
 }

@@ -2,12 +2,15 @@
 
 #include <string.h>
 
-#include "fw/proto.h"
+#include "fw/inspect.h"
+#include "fw/runtime.h"
+#include "fw/testing.h"
 #include "hal_stm32f4/regs_rcc.h"
 #include "hal_stm32f4/regs_tim.h"
 #include "tse/ik.h"
 
-fw_controller bench_ctl;
+static fw_controller_mem bench_mem;
+fw_controller *bench_ctl;
 uint64_t bench_now_us;
 uint32_t bench_overhead;
 
@@ -55,7 +58,20 @@ static int can_send(void *c, const hal_can_frame *f)
     }
     return 0;
 }
-static int can_receive(void *c, hal_can_frame *f) { (void)c; (void)f; return 0; }
+/* Frames for the next poll: a small ring the rig fills and the controller's poll empties. */
+#define RX_RING 8u
+static hal_can_frame rx[RX_RING];
+static unsigned rx_head, rx_count;
+static int can_receive(void *c, hal_can_frame *f)
+{
+    (void)c;
+    if (rx_count == 0)
+        return 0;
+    *f = rx[rx_head];
+    rx_head = (rx_head + 1u) % RX_RING;
+    --rx_count;
+    return 1;
+}
 static void can_state(void *c, hal_can_state *s) { (void)c; memset(s, 0, sizeof *s); }
 static void st_dir(void *c, uint8_t m) { (void)c; (void)m; }
 static void st_pulse(void *c, uint8_t m) { (void)c; (void)m; }
@@ -66,7 +82,7 @@ static uint64_t clk_now(void *c) { (void)c; return bench_now_us; }
 static int st_load(void *c, void *b, size_t n) { (void)c; (void)b; (void)n; return 0; }
 static int st_save(void *c, const void *b, size_t n) { (void)c; (void)b; (void)n; return -1; }
 
-void bench_frame(proto_msg msg, const int32_t *v)
+void bench_queue(proto_msg msg, const int32_t *v)
 {
     proto_message m;
     memset(&m, 0, sizeof m);
@@ -76,30 +92,46 @@ void bench_frame(proto_msg msg, const int32_t *v)
         m.v[i] = v[i];
     hal_can_frame f;
     proto_encode(&m, &f);
-    fw_handle_frame(&bench_ctl, &f);
+    if (rx_count == RX_RING)
+        fw_poll(bench_ctl); /* room first: the rig never drops a frame */
+    rx[(rx_head + rx_count) % RX_RING] = f;
+    ++rx_count;
+}
+
+void bench_frame(proto_msg msg, const int32_t *v)
+{
+    bench_queue(msg, v);
+    fw_poll(bench_ctl);
 }
 
 void bench_stage(uint8_t seq, const tse_real pose[6])
 {
     for (int part = 0; part < 3; ++part) {
         const int32_t v[3] = {seq, (int32_t)(pose[2 * part] * TSE_R(1e6)), (int32_t)(pose[2 * part + 1] * TSE_R(1e6))};
-        bench_frame((proto_msg)(PM_POSE_A + part), v);
+        bench_queue((proto_msg)(PM_POSE_A + part), v);
     }
+    fw_poll(bench_ctl);
+}
+
+void bench_period(uint32_t *c)
+{
+    bench_now_us += 1000;
+    bench_frame(PM_HOST_HEARTBEAT, (const int32_t[]){0});
+    if (c) {
+        const uint32_t t0 = bench_count();
+        fw_control_tick(bench_ctl);
+        *c = bench_count() - t0 - bench_overhead;
+    } else {
+        fw_control_tick(bench_ctl);
+    }
+    const fw_config *cfg = fw_config_of(bench_ctl);
+    for (uint32_t t = 0; t < cfg->step_hz / cfg->segment_hz; ++t)
+        fw_step_tick(bench_ctl);
 }
 
 int bench_rig_place(const tse_real p[6])
 {
-    tse_ik_result r;
-    if (tse_ik(&bench_ctl.geom, p, NULL, &r) != TSE_OK)
-        return -1;
-    int32_t steps[6];
-    for (int k = 0; k < 6; ++k) {
-        bench_ctl.q[k] = bench_ctl.q_prev[k] = r.q[k];
-        bench_ctl.pose[k] = p[k];
-        steps[k] = fw_to_steps(&bench_ctl, r.q[k]);
-    }
-    stepgen_set_position(&bench_ctl.sg, steps);
-    return 0;
+    return fw_testing_homed_at(bench_ctl, p);
 }
 
 int bench_rig_start(void)
@@ -111,32 +143,37 @@ int bench_rig_start(void)
     hal.inputs = (hal_inputs){0, in_limits, in_estop};
     hal.clock = (hal_clock){0, clk_now};
     hal.storage = (hal_storage){0, st_load, st_save};
-    const fw_config cfg = {1, 1000, 200000, true};
-    if (fw_init(&bench_ctl, &hal, &cfg) != 0 || bench_rig_place(bench_ctl.geom.home_pose) != 0)
+    const fw_config cfg = {1, 1000, 200000, NULL, NULL}; /* one context: no await */
+    rx_head = rx_count = 0;
+    bench_ctl = fw_init(&bench_mem, &hal, &cfg);
+    if (!bench_ctl || fw_testing_homed_at_home(bench_ctl) != 0)
         return -1;
-    bench_ctl.homed = true;
-    bench_ctl.pose_known = true;
     bench_frame(PM_ENABLE, (const int32_t[]){0});
-    return bench_ctl.state == FW_STATE_IDLE ? 0 : -1;
+    fw_control_tick(bench_ctl); /* takes the ENABLE the poll handed over */
+    return fw_state_of(bench_ctl) == FW_STATE_IDLE ? 0 : -1;
 }
 
 uint32_t bench_commit_cost(const bench_commit *bc, char *answer, int *reason)
 {
-    /* A copy to come back to: every pointer in the controller is to the HAL's functions. */
-    static fw_controller rest;
-    rest = bench_ctl;
+    /* A copy to come back to, restored where it was taken: the controller's pointers (to the HAL's
+     * functions, and into its own memory) stay valid. */
+    static fw_controller_mem rest;
+    rest = bench_mem;
     *answer = 0;
     *reason = 0;
     if (bench_rig_place(bc->from) != 0) {
-        bench_ctl = rest;
+        bench_mem = rest;
         return 0;
     }
-    const uint8_t seq = (uint8_t)(bench_ctl.last_seq + 1u); /* newer than the last, whatever it was */
+    static fw_inspection in;
+    fw_inspect(bench_ctl, &in);
+    const uint8_t seq = (uint8_t)(in.last_seq + 1u); /* newer than the last, whatever it was */
     bench_stage(seq, bc->to);
     answered = false;
+    bench_queue(PM_MOVE_COMMIT, ((const int32_t[]){seq, bc->kind, bc->value}));
     bench_wrap_clear();
     const uint32_t t0 = bench_count();
-    bench_frame(PM_MOVE_COMMIT, ((const int32_t[]){seq, bc->kind, bc->value}));
+    fw_poll(bench_ctl);
     const uint32_t t1 = bench_count();
     const bool wrapped = bench_wrapped();
     if (answered) {
@@ -144,6 +181,6 @@ uint32_t bench_commit_cost(const bench_commit *bc, char *answer, int *reason)
         *answer = fn == proto_table[PM_ACK].function ? 'a' : 'r';
         *reason = *answer == 'r' ? answer_frame.data[2] : 0;
     }
-    bench_ctl = rest;
+    bench_mem = rest;
     return wrapped ? UINT32_MAX : t1 - t0 - bench_overhead;
 }

@@ -7,9 +7,10 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "fw/controller_internal.h"
+#include "fw/controller.h"
+#include "fw/proto.h"
 
-extern fw_controller bench_ctl;
+extern fw_controller *bench_ctl;
 extern uint64_t bench_now_us;
 extern uint32_t bench_overhead; /* what two reads of the counter back to back differ by */
 
@@ -30,8 +31,14 @@ int bench_rig_start(void);
 /* The controller at rest at pose p, its slides there (p must be reachable): 0, else -1. */
 int bench_rig_place(const tse_real p[6]);
 
+/* Queues a frame for the controller's next poll (fw_poll); bench_frame queues it and polls. */
+void bench_queue(proto_msg msg, const int32_t *v);
 void bench_frame(proto_msg msg, const int32_t *v);
 void bench_stage(uint8_t seq, const tse_real pose[6]);
+/* A control period with the host alive, as the board's contexts order it on one context
+ * (fw/runtime.h): a heartbeat polled, the control tick (its instructions into *c when c is not
+ * NULL), the period's step ticks. */
+void bench_period(uint32_t *c);
 
 /* One adversarial commit: from rest at `from`, a MOVE_COMMIT to `to` of kind 0 (duration, ms) or 1
  * (speed, um/s) and that value. */
@@ -40,7 +47,7 @@ typedef struct {
     int32_t kind, value;
 } bench_commit;
 
-/* Instructions fw_handle_frame takes over the commit's MOVE_COMMIT, with its answer ('a' ACK, 'r'
+/* Instructions the poll that takes the commit's MOVE_COMMIT costs (fw_poll, the frame waiting), with its answer ('a' ACK, 'r'
  * REJECT) and, for a REJECT, its reason; the controller is put back at rest afterwards.  UINT32_MAX
  * for a frame that wrapped the counter, 0 when `from` is not reachable. */
 uint32_t bench_commit_cost(const bench_commit *bc, char *answer, int *reason);

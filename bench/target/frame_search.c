@@ -60,7 +60,7 @@ static tse_real log_uniform(tse_real lo, tse_real hi)
 static bool reachable(const tse_real p[6])
 {
     tse_ik_result r;
-    return tse_ik(&bench_ctl.geom, p, NULL, &r) == TSE_OK;
+    return tse_ik(fw_geometry_of(bench_ctl), p, NULL, &r) == TSE_OK;
 }
 
 /* The largest t in [0, 1] along p0 + t dir that the solver still takes, by bisection. */
@@ -100,7 +100,7 @@ static void random_value(bench_commit *bc, bool slow)
 
 static void candidate(int family, bench_commit *bc)
 {
-    const tse_real *home = bench_ctl.geom.home_pose;
+    const tse_real *home = fw_geometry_of(bench_ctl)->home_pose;
     tse_real dir[6];
     memcpy(bc->from, home, sizeof bc->from);
     switch (family) {

@@ -10,7 +10,9 @@
 
 #include "bench_rig.h"
 #include "frame_cases.h"
+#include "fw/inspect.h"
 #include "fw/move.h"
+#include "fw/runtime.h"
 #include "fw/stepgen.h"
 #include "hal_stm32f4/semihost.h"
 #include "tse/fk.h"
@@ -132,41 +134,53 @@ static void bench_stepgen(void)
     report("step_tick_6axes_max", first, n_first, 1);
 }
 
+static uint32_t segments_of_running(void)
+{
+    static fw_inspection in;
+    fw_inspect(bench_ctl, &in);
+    return in.has_next ? in.next.segments : in.move.segments;
+}
+
 static void bench_controller(void)
 {
     if (bench_rig_start() != 0) {
         sh_puts("bench: controller did not start\n");
         return;
     }
-    fw_controller *const ctl = &bench_ctl;
+    fw_controller *const ctl = bench_ctl;
 
-    /* Commit-to-first-setpoint: the commit's validation, for a 1 s and a 5 s move. */
+    /* Commit-to-first-setpoint: the commit's validation (the poll that takes it), for a 1 s and a
+     * 5 s move from rest, then a 5 s move blended into the running 5 s one. */
     static const struct {
         const char *name;
         tse_real to[6];
         int32_t ms;
-    } moves[2] = {{"1s", {0.05f, -0.03f, 1.10f, 0.03f, -0.02f, 0.10f}, 1000},
-                  {"5s", {-0.10f, 0.08f, 1.30f, -0.05f, 0.04f, -0.20f}, 5000}};
+    } moves[3] = {{"commit_1s", {0.05f, -0.03f, 1.10f, 0.03f, -0.02f, 0.10f}, 1000},
+                  {"commit_5s", {-0.10f, 0.08f, 1.30f, -0.05f, 0.04f, -0.20f}, 5000},
+                  {"validate_blend", {0.08f, -0.06f, 1.00f, 0.04f, -0.03f, 0.15f}, 5000}};
     uint8_t seq = 1;
-    for (int m = 0; m < 2; ++m) {
+    for (int m = 0; m < 3; ++m) {
+        if (m == 2) /* a second into the first 5 s move */
+            for (int i = 0; i < 1000; ++i)
+                bench_period(NULL);
         bench_stage(seq, moves[m].to);
         uint32_t n;
-        MEASURE(n, bench_frame(PM_MOVE_COMMIT, ((const int32_t[]){seq, 0, moves[m].ms})));
+        bench_queue(PM_MOVE_COMMIT, ((const int32_t[]){seq, 0, moves[m].ms}));
+        MEASURE(n, fw_poll(ctl));
         ++seq;
-        const uint32_t segs = ctl->move.segments;
-        sh_printf("commit_%s,%lu\n", moves[m].name, (unsigned long)n);
-        sh_printf("validate_segment_%s,%lu\n", moves[m].name, (unsigned long)(segs ? n / segs : 0));
+        const uint32_t segs = segments_of_running();
+        sh_printf("%s,%lu\n", moves[m].name, (unsigned long)n);
+        if (m < 2)
+            sh_printf("validate_segment_%s,%lu\n", moves[m].name + 7, (unsigned long)(segs ? n / segs : 0));
+        if (m == 1)
+            continue; /* the blend joins it */
         /* Run the move: control ticks measured, step ticks between them not. */
         unsigned k = 0;
-        while (ctl->state == FW_STATE_MOVING) {
-            bench_now_us += 1000;
+        while (fw_state_of(ctl) == FW_STATE_MOVING) {
             uint32_t c;
-            MEASURE(c, fw_control_tick(ctl));
-            if (k < MAX_SAMPLES && ctl->state == FW_STATE_MOVING)
+            bench_period(&c);
+            if (k < MAX_SAMPLES && fw_state_of(ctl) == FW_STATE_MOVING)
                 samples[k++] = c;
-            for (int t = 0; t < 200; ++t)
-                fw_step_tick(ctl);
-            bench_frame(PM_HOST_HEARTBEAT, (const int32_t[]){0});
         }
         if (m == 0)
             report("control_segment", samples, k, 0);

@@ -1,82 +1,15 @@
-/* Command handling: frames in, acknowledgements and rejects out.  Every refused command gets a
- * REJECT naming why, and nothing of it is applied. */
-#include "fw/controller_internal.h"
+#include "commands.h"
 
 #include <string.h>
 
-#include "fw/reject.h"
-
-#define A FW_REASON_NONE
-#define S FW_REASON_STATE
-
-/* Which command each state accepts.  Columns: boot, disabled, homing, idle, moving, stopping,
- * fault, estop.  Motion commands check homing and their queue on top of this. */
-static const uint8_t allowed[PM_COUNT][FW_STATE_COUNT] = {
-    [PM_ESTOP] = {A, A, A, A, A, A, A, A},
-    [PM_STOP] = {S, A, A, A, A, A, A, A},
-    [PM_HOST_HEARTBEAT] = {A, A, A, A, A, A, A, A},
-    [PM_ENABLE] = {S, A, S, S, S, S, S, S},
-    [PM_DISABLE] = {S, A, S, A, S, S, A, A},
-    [PM_HOME] = {S, S, S, A, S, S, S, S},
-    [PM_CLEAR_FAULT] = {S, S, S, S, S, S, A, A},
-    [PM_POSE_A] = {S, A, A, A, A, A, A, A},
-    [PM_POSE_B] = {S, A, A, A, A, A, A, A},
-    [PM_POSE_C] = {S, A, A, A, A, A, A, A},
-    [PM_MOVE_COMMIT] = {S, S, S, A, A, S, S, S},
-    [PM_TRAJ_COMMIT] = {S, S, S, A, A, S, S, S},
-    [PM_PARAM_GET] = {A, A, A, A, A, A, A, A},
-    [PM_PARAM_SET] = {S, A, S, S, S, S, A, A},
-    [PM_PARAM_SAVE] = {S, A, S, S, S, S, A, A},
-};
-
-#undef A
-#undef S
-
-fw_reason fw_command_allowed(proto_msg cmd, fw_state state)
-{
-    if ((unsigned)cmd >= PM_COUNT || (unsigned)state >= FW_STATE_COUNT ||
-        proto_table[cmd].dir != PROTO_TO_CONTROLLER)
-        return FW_REASON_UNKNOWN;
-    return (fw_reason)allowed[cmd][state];
-}
-
-void fw_send(fw_controller *c, proto_msg msg, const int32_t *values)
-{
-    proto_message m;
-    m.msg = msg;
-    m.node = c->cfg.node;
-    for (int i = 0; i < proto_table[msg].nfields; ++i)
-        /* Each caller's array holds its message's nfields; the analyzer cannot see the table's.
-         * NOLINTNEXTLINE(clang-analyzer-core.uninitialized.Assign) */
-        m.v[i] = values[i];
-    hal_can_frame f;
-    if (proto_encode(&m, &f) == 0)
-        c->hal.can.send(c->hal.can.ctx, &f);
-}
-
-void fw_ack(fw_controller *c, uint8_t function, uint8_t seq, uint32_t detail)
-{
-    const int32_t v[5] = {function, seq, (int32_t)fw_traj_depth(&c->traj),
-                          (int32_t)fw_traj_free(&c->traj), (int32_t)(detail > INT32_MAX ? INT32_MAX : detail)};
-    fw_send(c, PM_ACK, v);
-}
-
-void fw_reject(fw_controller *c, uint8_t function, uint8_t seq, fw_reason reason, uint8_t field,
-               const fw_plan_result *why)
-{
-    if (reason == FW_REASON_STATE)
-        field = (uint8_t)c->state; /* whichever check refused, the host learns the state it refused in */
-    int32_t v[PROTO_MAX_FIELDS];
-    fw_reject_values(function, seq, reason, field, why, v);
-    fw_send(c, PM_REJECT, v);
-}
-
-void fw_reject_param(fw_controller *c, uint8_t function, fw_reason reason, uint16_t id, fw_param_rule rule)
-{
-    int32_t v[PROTO_MAX_FIELDS];
-    fw_reject_param_values(function, reason, id, rule, v);
-    fw_send(c, PM_REJECT, v);
-}
+#include "adopt.h"
+#include "fw/command_table.h"
+#include "handover.h"
+#include "inbox.h"
+#include "planner.h"
+#include "send.h"
+#include "state.h"
+#include "traj_rows.h"
 
 /* Sequence numbers wrap at 256: newer means ahead by 1..127. */
 static bool newer(uint8_t seq, uint8_t than)
@@ -87,9 +20,10 @@ static bool newer(uint8_t seq, uint8_t than)
 
 static void stage(fw_controller *c, const proto_message *m, uint8_t function)
 {
+    fw_thread *th = &c->th;
     const uint8_t seq = (uint8_t)m->v[0];
     /* Both refusals before anything changes: a refused part leaves the staged pose as it was. */
-    if (c->any_commit && !newer(seq, c->last_seq)) {
+    if (th->any_commit && !newer(seq, th->last_seq)) {
         fw_reject(c, function, seq, FW_REASON_STALE, 0, NULL);
         return;
     }
@@ -97,34 +31,55 @@ static void stage(fw_controller *c, const proto_message *m, uint8_t function)
      * parts of two numbers never mix, because a commit needs all three under its own number, and
      * a stray part staged under a number ahead of the host's (a second tool, a corrupted frame)
      * must not refuse the host's parts until a restart, as it would if it could not be displaced. */
-    if (c->stage_have != 0 && seq != c->stage_seq)
-        c->stage_have = 0;
+    if (th->stage_have != 0 && seq != th->stage_seq)
+        th->stage_have = 0;
     const int part = (int)m->msg - PM_POSE_A;
-    c->stage_seq = seq;
-    c->stage_have |= (uint8_t)(1u << part);
-    c->stage_v[2 * part] = m->v[1];
-    c->stage_v[2 * part + 1] = m->v[2];
+    th->stage_seq = seq;
+    th->stage_have |= (uint8_t)(1u << part);
+    th->stage_v[2 * part] = m->v[1];
+    th->stage_v[2 * part + 1] = m->v[2];
 }
 
 /* The staged pose a commit of seq would move to, in SI units, or why there is none. */
 static fw_reason commit_target(const fw_controller *c, uint8_t seq, tse_real pose[6])
 {
-    if (c->any_commit && !newer(seq, c->last_seq))
+    const fw_thread *th = &c->th;
+    if (th->any_commit && !newer(seq, th->last_seq))
         return FW_REASON_STALE;
-    if (c->stage_have != 7u || c->stage_seq != seq)
+    if (th->stage_have != 7u || th->stage_seq != seq)
         return FW_REASON_INCOMPLETE;
-    if (!c->homed)
+    if (!(th->view.flags & FW_VIEW_HOMED))
         return FW_REASON_NOT_HOMED;
     for (int k = 0; k < 6; ++k)
-        pose[k] = (tse_real)c->stage_v[k] * TSE_R(1e-6);
+        pose[k] = (tse_real)th->stage_v[k] * TSE_R(1e-6);
     return FW_REASON_NONE;
 }
 
 static void accept_commit(fw_controller *c, uint8_t seq)
 {
-    c->last_seq = seq;
-    c->any_commit = true;
-    c->stage_have = 0;
+    c->th.last_seq = seq;
+    c->th.any_commit = true;
+    c->th.stage_have = 0;
+}
+
+/* A STOP or an ESTOP ended a validation (inbox.h): it is answered and handed over before the
+ * commit it ended, which is then refused in the state it left. */
+/* A frame as the controller takes it: its message, and how it answers. */
+typedef struct {
+    proto_message m;
+    uint8_t function, seq;
+    bool broadcast; /* nothing answers a broadcast */
+} taken;
+
+static bool admit(fw_controller *c, const hal_can_frame *f, taken *t);
+static void state_command(fw_controller *c, const taken *t);
+
+static void stop_first(fw_controller *c)
+{
+    hal_can_frame f;
+    taken t;
+    if (fw_inbox_take_stop(c, &f) && admit(c, &f, &t))
+        state_command(c, &t); /* a STOP or an ESTOP (fw_inbox_take_stop takes no other) */
 }
 
 static void move_commit(fw_controller *c, const proto_message *m, uint8_t function)
@@ -136,117 +91,160 @@ static void move_commit(fw_controller *c, const proto_message *m, uint8_t functi
         fw_reject(c, function, seq, r, 0, NULL);
         return;
     }
-    const bool queued = c->state == FW_STATE_MOVING;
-    if (queued && (c->src != FW_SRC_MOVE || c->stopping || c->cfg.no_blend)) {
+    const fw_view *v = &c->th.view;
+    const bool queued = v->state == FW_STATE_MOVING;
+    if (queued && (v->src != FW_SRC_MOVE || (v->flags & FW_VIEW_STOPPING))) {
         fw_reject(c, function, seq, FW_REASON_STATE, 0, NULL);
         return;
     }
-    if (queued && c->has_next) {
+    if (queued && (v->flags & FW_VIEW_HAS_NEXT)) {
         fw_reject(c, function, seq, FW_REASON_QUEUE_FULL, 0, NULL);
         return;
     }
     const fw_move_kind kind = m->v[1] == 0 ? FW_MOVE_DURATION : FW_MOVE_SPEED;
     const tse_real value = kind == FW_MOVE_DURATION ? (tse_real)m->v[2] * TSE_R(1e-3)
                                                     : (tse_real)m->v[2] * TSE_R(1e-6);
-    /* A move committed during another starts from that one's end. */
-    fw_move *mv = queued ? &c->next : &c->move;
-    const tse_real *from = queued ? c->move.to : c->pose;
-    const tse_real *q_from = queued ? c->move.q_end : c->q;
     fw_plan_result why;
-    if (fw_move_plan(mv, &c->geom, &c->lim, from, to, kind, value, q_from, &why) != 0) {
+    switch (fw_plan_commit(c, to, kind, value, queued, &why)) {
+    case FW_PLAN_STOPPED:
+        stop_first(c);
+        fw_reject(c, function, seq, FW_REASON_STATE, 0, NULL);
+        return;
+    case FW_PLAN_REFUSED:
         fw_reject(c, function, seq, why.reason, 0, &why);
         /* A refused pose is spent: its sequence number cannot be committed again. */
         accept_commit(c, seq);
         return;
+    case FW_PLAN_OK:
+        break;
+    }
+    const fw_verdict verdict = fw_handover(c);
+    if (verdict.reason != FW_REASON_NONE) {
+        /* The state changed while it was planned (a fault, a stop, the running move's end short
+         * of where this one starts): refused for the state, the number not spent. */
+        fw_reject(c, function, seq, verdict.reason, 0, NULL);
+        return;
     }
     accept_commit(c, seq);
-    fw_move_start start = FW_START_REST;
-    if (queued) {
-        /* Blend if the path allows, else run it back to back; setpoints already queued for the
-         * step generator are behind us. */
-        start = fw_move_blend(&c->move, &c->next, &c->geom, &c->lim, c->segments_run + 2u, &c->blend_k0) == 0
-                    ? FW_START_BLENDED
-                    : FW_START_AFTER;
-        c->has_next = true;
-    } else {
-        fw_start_source(c, FW_SRC_MOVE);
-    }
+    const fw_move *mv = &c->sh.req.u.move.mv;
+    c->th.last_move = *mv;
     fw_ack(c, function, seq, (uint32_t)(mv->prof.T * TSE_R(1000.0) + TSE_R(0.5)));
     /* Per mille of the limit, rounded up: a demand over the limit never reads as at it. */
     const tse_real demand = mv->bound_ratio * TSE_R(1000.0);
-    const int32_t info[5] = {seq, start, mv->bound, mv->bound_slide,
+    const int32_t info[5] = {seq, verdict.start, mv->bound, mv->bound_slide,
                              demand >= TSE_R(65535.0) ? 65535 : (int32_t)tse_ceil(demand)};
     fw_send(c, PM_MOVE_INFO, info);
 }
 
-/* A REJECT of a trajectory row for its place among the trajectories (order, ended). */
-static void reject_row(fw_controller *c, uint8_t function, uint8_t seq, fw_reason r, uint8_t field, int32_t where)
-{
-    int32_t v[PROTO_MAX_FIELDS];
-    fw_reject_values(function, seq, r, field, NULL, v);
-    v[6] = where;
-    fw_send(c, PM_REJECT, v);
-}
-
 static void traj_commit(fw_controller *c, const proto_message *m, uint8_t function)
 {
+    fw_thread *th = &c->th;
     const uint8_t seq = (uint8_t)m->v[0];
     const bool first = (m->v[2] & PROTO_TRAJ_FIRST) != 0, last = (m->v[2] & PROTO_TRAJ_LAST) != 0;
     uint8_t field;
     int32_t where;
-    fw_reason r = fw_traj_row_refusal(c, m, false, &field, &where);
+    fw_reason r = fw_rows_refusal(c, m, false, &field, &where);
     if (r != FW_REASON_NONE) {
-        reject_row(c, function, seq, r, field, where);
+        fw_reject_row(c, function, seq, r, field, where);
         return;
     }
     tse_real to[6];
     r = commit_target(c, seq, to);
     /* A trajectory starts only at rest; while one runs, its rows join it. */
-    if (r == FW_REASON_NONE && first && c->state != FW_STATE_IDLE)
+    if (r == FW_REASON_NONE && first && th->view.state != FW_STATE_IDLE)
         r = FW_REASON_STATE;
+    /* A trajectory that takes no more points (after its last), or a full queue, changes nothing. */
+    if (r == FW_REASON_NONE && !first && th->traj.closed)
+        r = FW_REASON_STATE;
+    if (r == FW_REASON_NONE && !first && th->view.traj_depth >= FW_TRAJ_CAPACITY)
+        r = FW_REASON_QUEUE_FULL;
     if (r != FW_REASON_NONE) {
         fw_reject(c, function, seq, r, 0, NULL);
         return;
     }
     if (first)
-        fw_traj_start(&c->traj, &c->lim, c->pose, c->q);
+        fw_traj_check_start(&th->traj, &th->lim, th->view.pose, th->view.q);
+    fw_request *req = fw_handover_request(c, PM_TRAJ_COMMIT);
+    req->u.row.first = first;
+    req->u.row.id = (uint8_t)m->v[3];
+    fw_traj_check *after = &th->traj_after;
     fw_plan_result why;
-    if (fw_traj_push(&c->traj, &c->geom, &c->lim, to, (uint32_t)m->v[1], last, &why) != 0) {
+    fw_inbox_watch_begin(c, !first);
+    const int rc = fw_traj_check_point(&th->traj, &th->geom, &th->lim, to, (uint32_t)m->v[1], last, &req->u.row.p,
+                                       after, &why);
+    if (fw_inbox_watch_end(c)) {
+        /* A STOP (or an ESTOP) ended the row's validation: answered first, then the row is refused
+         * as a row of the trajectory it ended, where it did (how, for the host: tse.can's Ended),
+         * else for the state. */
+        stop_first(c);
+        fw_rows_collect(c);
+        r = fw_rows_refusal(c, m, false, &field, &where);
+        if (r == FW_REASON_ENDED)
+            fw_reject_row(c, function, seq, r, field, where);
+        else
+            fw_reject(c, function, seq, FW_REASON_STATE, 0, NULL);
+        return;
+    }
+    if (rc != 0) {
         fw_reject(c, function, seq, why.reason, 0, &why);
-        /* Refused for its content (the pose, its timing), the number is spent, as for moves; a
-         * full queue, or a trajectory that takes no more points (state), changes nothing. */
-        if (why.reason != FW_REASON_QUEUE_FULL && why.reason != FW_REASON_STATE)
+        /* Refused for its content (the pose, its timing), the number is spent, as for moves. */
+        if (why.reason != FW_REASON_STATE)
             accept_commit(c, seq);
         return;
     }
+    const fw_verdict verdict = fw_handover(c);
+    if (verdict.reason == FW_REASON_ENDED) {
+        /* The trajectory ended while the row was validated: refused as a row of it. */
+        fw_rows_collect(c);
+        r = fw_rows_refusal(c, m, false, &field, &where);
+        fw_reject_row(c, function, seq, r != FW_REASON_NONE ? r : FW_REASON_ENDED, field, where);
+        return;
+    }
+    if (verdict.reason != FW_REASON_NONE) {
+        fw_reject(c, function, seq, verdict.reason, 0, NULL);
+        return;
+    }
+    th->traj = *after;
     accept_commit(c, seq);
-    fw_traj_run_took(c, seq, first, (uint8_t)m->v[3]);
-    if (first)
-        fw_start_source(c, FW_SRC_TRAJ);
+    fw_rows_took(c, seq, first, (uint8_t)m->v[3]);
     fw_ack(c, function, seq, 0);
 }
 
 static void param_value(fw_controller *c, uint16_t id)
 {
-    const int32_t v[2] = {id, c->params.v[id]};
+    const int32_t v[2] = {id, c->th.params.v[id]};
     fw_send(c, PM_PARAM_VALUE, v);
 }
 
 static void param_set(fw_controller *c, const proto_message *m, uint8_t function)
 {
+    fw_thread *th = &c->th;
     const uint16_t id = (uint16_t)m->v[0];
-    fw_param_set next = c->params;
+    fw_param_set next = th->params;
     fw_param_fault why;
     const int r = fw_params_set_one(&next, id, m->v[1], &why);
     if (r != 0) {
         fw_reject_param(c, function, (fw_reason)r, id, r == FW_REASON_PARAM_SET ? why.rule : FW_RULE_NONE);
         return;
     }
-    const fw_param_rule rule = fw_apply_params(c, &next);
+    fw_request *req = fw_handover_request(c, PM_PARAM_SET);
+    const fw_param_rule rule = fw_params_prepare(c, &next, &req->u.params);
     if (rule != FW_RULE_NONE) {
         fw_reject_param(c, function, FW_REASON_PARAM_SET, id, rule);
         return;
     }
+    const fw_verdict verdict = fw_handover(c);
+    if (verdict.reason == FW_REASON_PARAM_SET) {
+        fw_reject_param(c, function, FW_REASON_PARAM_SET, id, verdict.rule);
+        return;
+    }
+    if (verdict.reason != FW_REASON_NONE) {
+        fw_reject(c, function, 0, verdict.reason, 0, NULL);
+        return;
+    }
+    th->params = req->u.params.s;
+    th->geom = req->u.params.g;
+    th->lim = req->u.params.lim;
     fw_ack(c, function, 0, 0);
     param_value(c, id);
 }
@@ -254,7 +252,7 @@ static void param_set(fw_controller *c, const proto_message *m, uint8_t function
 static void param_save(fw_controller *c, uint8_t function)
 {
     uint8_t buf[256];
-    const size_t n = fw_params_serialize(&c->params, buf, sizeof buf);
+    const size_t n = fw_params_serialize(&c->th.params, buf, sizeof buf);
     if (n == 0 || c->hal.storage.save(c->hal.storage.ctx, buf, n) != 0) {
         fw_reject(c, function, 0, FW_REASON_STORAGE, 0, NULL);
         return;
@@ -273,112 +271,112 @@ static uint8_t range_seq(const hal_can_frame *f, uint8_t function, proto_error e
     return f->data[d->fields[0].offset];
 }
 
-void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
-{
-    /* An e-stop interrupt during the poll: no command is taken against the state before it. */
-    fw_estop_complete(c);
-    const uint8_t node = (uint8_t)(f->id & PROTO_NODE_MASK);
-    const uint8_t function = (uint8_t)(f->id >> PROTO_NODE_BITS);
-    const bool broadcast = node == PROTO_BROADCAST;
-    /* Frames for other controllers, and our own kind of traffic from other nodes, are not ours. */
-    if (!broadcast && node != c->cfg.node)
-        return;
-    if (f->id <= HAL_CAN_MAX_ID && proto_lookup(function, PROTO_TO_HOST) != NULL &&
-        proto_lookup(function, PROTO_TO_CONTROLLER) == NULL)
-        return;
 
-    proto_message m;
-    const proto_error e = proto_decode(f, PROTO_TO_CONTROLLER, &m);
-    if (broadcast && !(e.reason == FW_REASON_NONE && (m.msg == PM_ESTOP || m.msg == PM_STOP)))
-        return; /* only stops are honoured from node 0, and nothing answers a broadcast */
+/* Whether frame f is a command of ours that the state allows, decoded into *t; a frame that is
+ * not ours is dropped, one that is refused is answered. */
+static bool admit(fw_controller *c, const hal_can_frame *f, taken *t)
+{
+    const uint8_t node = (uint8_t)(f->id & PROTO_NODE_MASK);
+    t->function = (uint8_t)(f->id >> PROTO_NODE_BITS);
+    t->broadcast = node == PROTO_BROADCAST;
+    /* Frames for other controllers, and our own kind of traffic from other nodes, are not ours. */
+    if (!t->broadcast && node != c->cfg.node)
+        return false;
+    if (f->id <= HAL_CAN_MAX_ID && proto_lookup(t->function, PROTO_TO_HOST) != NULL &&
+        proto_lookup(t->function, PROTO_TO_CONTROLLER) == NULL)
+        return false;
+
+    proto_message *m = &t->m;
+    const proto_error e = proto_decode(f, PROTO_TO_CONTROLLER, m);
+    if (t->broadcast && !(e.reason == FW_REASON_NONE && (m->msg == PM_ESTOP || m->msg == PM_STOP)))
+        return false; /* only stops are honoured from node 0, and nothing answers a broadcast */
     if (e.reason != FW_REASON_NONE) {
-        fw_reject(c, function, range_seq(f, function, e), e.reason, e.field, NULL);
-        return;
+        fw_reject(c, t->function, range_seq(f, t->function, e), e.reason, e.field, NULL);
+        return false;
     }
-    const bool has_seq = proto_table[m.msg].nfields > 0 && strcmp(proto_table[m.msg].fields[0].name, "seq") == 0;
-    const uint8_t seq = has_seq ? (uint8_t)m.v[0] : 0;
-    if (m.msg == PM_TRAJ_COMMIT) {
+    const bool has_seq = proto_table[m->msg].nfields > 0 && strcmp(proto_table[m->msg].fields[0].name, "seq") == 0;
+    t->seq = has_seq ? (uint8_t)m->v[0] : 0;
+    if (m->msg == PM_TRAJ_COMMIT) {
         /* A row of a trajectory that has ended is refused as such in every state: its host learns
          * how it ended, and no row of it ever starts or joins another. */
         uint8_t field;
         int32_t where;
-        const fw_reason ended = fw_traj_row_refusal(c, &m, true, &field, &where);
+        const fw_reason ended = fw_rows_refusal(c, m, true, &field, &where);
         if (ended != FW_REASON_NONE) {
-            reject_row(c, function, seq, ended, field, where);
-            return;
+            fw_reject_row(c, t->function, t->seq, ended, field, where);
+            return false;
         }
     }
-    const fw_reason r = fw_command_allowed(m.msg, c->state);
+    const fw_reason r = fw_command_allowed(m->msg, (fw_state)c->th.view.state);
     if (r != FW_REASON_NONE) {
-        if (!broadcast)
-            fw_reject(c, function, seq, r, 0, NULL);
-        return;
+        if (!t->broadcast)
+            fw_reject(c, t->function, t->seq, r, 0, NULL);
+        return false;
     }
+    return true;
+}
 
-    switch (m.msg) {
-    case PM_ESTOP:
-        fw_estop(c);
-        break;
-    case PM_STOP:
-        fw_stop_motion(c);
-        break;
+/* A command that changes only the tick's state (ENABLE, DISABLE, CLEAR_FAULT, HOME, STOP, ESTOP):
+ * handed over, answered by the tick's verdict. */
+static void state_command(fw_controller *c, const taken *t)
+{
+    if (t->m.msg == PM_ESTOP)
+        fw_estop_halt(c); /* stepping halts now; the tick completes it */
+    fw_handover_request(c, t->m.msg);
+    const fw_verdict verdict = fw_handover(c);
+    if (t->broadcast)
+        return;
+    if (verdict.reason != FW_REASON_NONE)
+        fw_reject(c, t->function, t->seq, verdict.reason, 0, NULL);
+    else
+        fw_ack(c, t->function, t->seq, 0);
+}
+
+void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
+{
+    taken t;
+    if (!admit(c, f, &t))
+        return;
+    const proto_message *m = &t.m;
+    switch (m->msg) {
     case PM_HOST_HEARTBEAT:
-        c->last_heartbeat_us = c->hal.clock.now_us(c->hal.clock.ctx);
+        atomic_store(&c->sh.heartbeat_us, fw_now32(c));
         return; /* periodic: not acknowledged */
-    case PM_ENABLE:
-        fw_drives(c, true);
-        c->last_heartbeat_us = c->hal.clock.now_us(c->hal.clock.ctx);
-        fw_set_state(c, FW_STATE_IDLE);
-        break;
-    case PM_DISABLE:
-        if (c->state == FW_STATE_IDLE) {
-            fw_drives(c, false);
-            fw_set_state(c, FW_STATE_DISABLED);
-        }
-        break;
-    case PM_HOME:
-        fw_homing_start(c);
-        break;
-    case PM_CLEAR_FAULT:
-        if (c->hal.inputs.estop(c->hal.inputs.ctx)) {
-            /* The input still open: it would latch again at once.  The reject says the state. */
-            fw_reject(c, function, seq, FW_REASON_STATE, 0, NULL);
-            return;
-        }
-        c->fault = FW_FAULT_NONE;
-        c->pending_fault = FW_FAULT_NONE;
-        fw_drives(c, false);
-        fw_set_state(c, FW_STATE_DISABLED);
-        break;
     case PM_POSE_A:
     case PM_POSE_B:
     case PM_POSE_C:
-        stage(c, &m, function);
+        stage(c, m, t.function);
         return; /* staging is answered by the commit */
     case PM_MOVE_COMMIT:
-        move_commit(c, &m, function);
+        move_commit(c, m, t.function);
         return;
     case PM_TRAJ_COMMIT:
-        traj_commit(c, &m, function);
+        traj_commit(c, m, t.function);
         return;
     case PM_PARAM_GET:
-        if (m.v[0] >= FP_COUNT) {
-            fw_reject_param(c, function, FW_REASON_PARAM_UNKNOWN, (uint16_t)m.v[0], FW_RULE_NONE);
+        if (m->v[0] >= FP_COUNT) {
+            fw_reject_param(c, t.function, FW_REASON_PARAM_UNKNOWN, (uint16_t)m->v[0], FW_RULE_NONE);
             return;
         }
-        fw_ack(c, function, 0, 0);
-        param_value(c, (uint16_t)m.v[0]);
+        fw_ack(c, t.function, 0, 0);
+        param_value(c, (uint16_t)m->v[0]);
         return;
     case PM_PARAM_SET:
-        param_set(c, &m, function);
+        param_set(c, m, t.function);
         return;
     case PM_PARAM_SAVE:
-        param_save(c, function);
+        param_save(c, t.function);
+        return;
+    case PM_ESTOP:
+    case PM_STOP:
+    case PM_ENABLE:
+    case PM_DISABLE:
+    case PM_HOME:
+    case PM_CLEAR_FAULT:
+        state_command(c, &t);
         return;
     default:
-        fw_reject(c, function, seq, FW_REASON_UNKNOWN, 0, NULL);
+        fw_reject(c, t.function, t.seq, FW_REASON_UNKNOWN, 0, NULL);
         return;
     }
-    if (!broadcast)
-        fw_ack(c, function, seq, 0);
 }

@@ -10,10 +10,16 @@
  *           last pressed one, is s = home_sw_k plus one step;
  *   DONE.
  * So homing takes the distances at the homing speed; only the braking distance and the switch's
- * hysteresis are crept.  Joint speeds ramp within the slide acceleration limit throughout, so a
+ * hysteresis are crept.  At rest on the edges, the zero is set and the thread checks the joint
+ * move's path (a quarter of a million instructions on the board: not in the control tick) before
+ * it starts.  Joint speeds ramp within the slide acceleration limit throughout, so a
  * stop or fault can bring homing to rest at any moment. */
-#include "fw/controller_internal.h"
+#include "homing.h"
+
+#include <stdatomic.h>
+
 #include "fw/joint_path.h"
+#include "steps.h"
 
 /* The release creep runs at this fraction of the homing speed, and at most half a step per control
  * tick: the steps emitted are read once per tick, so with less than one step between two reads the
@@ -31,7 +37,7 @@
 
 void fw_homing_start(fw_controller *c)
 {
-    fw_homing *h = &c->home;
+    fw_homing *h = &c->tick.home;
     h->active = true;
     h->abort = false;
     h->phase = HOME_SWITCHES;
@@ -46,9 +52,9 @@ void fw_homing_start(fw_controller *c)
         h->mark[k] = TSE_R(0.0);
         h->edge_steps[k] = 0;
     }
-    c->homed = false;
-    c->pose_known = false;
-    c->src = FW_SRC_NONE;
+    c->tick.homed = false;
+    c->tick.pose_known = false;
+    c->tick.src = FW_SRC_NONE;
     fw_set_state(c, FW_STATE_HOMING);
 }
 
@@ -61,63 +67,106 @@ static tse_real approach(tse_real v, tse_real target, tse_real dv)
     return target;
 }
 
-static void finish(fw_controller *c, bool homed)
+static fw_homing_outcome finish(fw_controller *c, bool homed)
 {
-    c->home.active = false;
-    c->homed = homed;
-    if (c->pending_fault != FW_FAULT_NONE) {
-        const fw_fault f = c->pending_fault;
-        c->pending_fault = FW_FAULT_NONE;
-        c->state = FW_STATE_IDLE; /* so that the fault latches rather than stopping again */
-        fw_fault_raise(c, f);
-        return;
-    }
-    fw_set_state(c, FW_STATE_IDLE);
+    c->tick.home.active = false;
+    c->tick.homed = homed;
+    return FW_HOMING_ENDED;
 }
 
 static void homing_fault(fw_controller *c)
 {
-    c->pending_fault = FW_FAULT_HOMING;
-    c->home.abort = true;
+    c->tick.pending_fault = FW_FAULT_HOMING;
+    c->tick.home.abort = true;
 }
 
-static void start_joint_move(fw_controller *c)
+/* At rest on the switches' edges: the zero, and the joint move's ends; its path goes to the thread
+ * for its check (fw_homing_check_path). */
+static void await_path_check(fw_controller *c)
 {
-    fw_homing *h = &c->home;
+    fw_homing *h = &c->tick.home;
     int32_t now[6];
     stepgen_positions(&c->sg, now); /* at rest: every pushed step is out */
-    tse_real longest = TSE_R(0.0);
-    const tse_real spm = (tse_real)c->params.v[FP_STEPS_PER_M];
+    const tse_real spm = (tse_real)c->tick.params.v[FP_STEPS_PER_M];
     for (int k = 0; k < 6; ++k) {
         /* The edge step is one above home_sw_k; what came after it counts on from there. */
-        now[k] = fw_home_switch_steps(c, k) + 1 + (now[k] - h->edge_steps[k]);
-        c->joint.from[k] = (tse_real)now[k] / spm;
-        c->joint.to[k] = c->geom.home_s;
-        c->q[k] = c->q_prev[k] = c->joint.from[k];
-        const tse_real d = tse_fabs(c->joint.to[k] - c->joint.from[k]);
+        now[k] = fw_switch_steps(&c->tick.params, k) + 1 + (now[k] - h->edge_steps[k]);
+        c->tick.joint.from[k] = (tse_real)now[k] / spm;
+        c->tick.joint.to[k] = c->tick.geom.home_s;
+        c->tick.q[k] = c->tick.q_prev[k] = c->tick.joint.from[k];
+    }
+    stepgen_set_position(&c->sg, now); /* the zero: from here on steps count from s = 0 */
+    h->phase = HOME_PATH_CHECK;
+    h->path_ask = 0;
+}
+
+/* Asks the thread to check the joint move's path, once its answer to any earlier ask is in (a
+ * homing stopped while its check ran leaves one behind). */
+static void ask_path_check(fw_controller *c)
+{
+    fw_shared *s = &c->sh;
+    const uint32_t asked = atomic_load_explicit(&s->path_asked, memory_order_relaxed);
+    if (atomic_load_explicit(&s->path_answered, memory_order_acquire) != asked)
+        return;
+    for (int k = 0; k < 6; ++k)
+        s->path_from[k] = c->tick.joint.from[k];
+    c->tick.home.path_ask = asked + 1u ? asked + 1u : 1u;
+    atomic_store_explicit(&s->path_asked, c->tick.home.path_ask, memory_order_release);
+}
+
+void fw_homing_check_path(fw_controller *c)
+{
+    fw_shared *s = &c->sh;
+    const uint32_t asked = atomic_load_explicit(&s->path_asked, memory_order_acquire);
+    if (asked == atomic_load_explicit(&s->path_answered, memory_order_relaxed))
+        return;
+    /* Validated as any move is before its first step (the parameter check has checked it from the
+     * switches themselves, fw_params_judge), with the thread's copy of the tick's parameters. */
+    tse_real where;
+    int scissor;
+    s->path_ok = fw_joint_path_check(&c->th.geom, s->path_from, &where, &scissor) == TSE_OK;
+    atomic_store_explicit(&s->path_answered, asked, memory_order_release);
+}
+
+/* The joint move from the switches' edges to the home pose, its path checked. */
+static void start_joint_move(fw_controller *c)
+{
+    tse_real longest = TSE_R(0.0);
+    for (int k = 0; k < 6; ++k) {
+        const tse_real d = tse_fabs(c->tick.joint.to[k] - c->tick.joint.from[k]);
         if (d > longest)
             longest = d;
     }
-    stepgen_set_position(&c->sg, now); /* the zero: from here on steps count from s = 0 */
-    /* Validated as any move is before its first step (the parameter check has checked it from the
-     * switches themselves, fw_params_judge). */
-    tse_real where;
-    int scissor;
-    if (fw_joint_path_check(&c->geom, c->joint.from, &where, &scissor) != TSE_OK) {
-        c->pending_fault = FW_FAULT_HOMING;
-        finish(c, false);
-        return;
-    }
     const tse_real n = longest > TSE_R(0.0) ? longest : TSE_R(1.0);
-    const tse_real jerk = c->lim.slide_amax * c->lim.plate_jmax / c->lim.plate_amax;
-    fw_profile_plan(&c->joint.prof, longest > TSE_R(0.0) ? TSE_R(1.0) : TSE_R(0.0),
-                    TSE_R(0.9) * c->lim.slide_vmax / n, TSE_R(0.9) * c->lim.slide_amax / n, jerk / n,
+    const tse_real jerk = c->tick.lim.slide_amax * c->tick.lim.plate_jmax / c->tick.lim.plate_amax;
+    fw_profile_plan(&c->tick.joint.prof, longest > TSE_R(0.0) ? TSE_R(1.0) : TSE_R(0.0),
+                    TSE_R(0.9) * c->tick.lim.slide_vmax / n, TSE_R(0.9) * c->tick.lim.slide_amax / n, jerk / n,
                     TSE_R(0.0));
-    h->phase = HOME_TO_POSE;
-    c->tau = TSE_R(0.0);
-    c->segments_run = 0;
-    c->stopping = false;
-    c->src = FW_SRC_JOINT;
+    c->tick.home.phase = HOME_TO_POSE;
+    c->tick.tau = TSE_R(0.0);
+    c->tick.segments_run = 0;
+    c->tick.stopping = false;
+    c->tick.src = FW_SRC_JOINT;
+}
+
+/* HOME_PATH_CHECK: asked, then waiting for the answer; a stop or a fault meanwhile ends homing. */
+static fw_homing_outcome path_check_tick(fw_controller *c)
+{
+    fw_homing *h = &c->tick.home;
+    if (h->abort)
+        return finish(c, false);
+    if (h->path_ask == 0) {
+        ask_path_check(c);
+        return FW_HOMING_GOING;
+    }
+    if (atomic_load_explicit(&c->sh.path_answered, memory_order_acquire) != h->path_ask)
+        return FW_HOMING_GOING;
+    if (!c->sh.path_ok) {
+        c->tick.pending_fault = FW_FAULT_HOMING;
+        return finish(c, false);
+    }
+    start_joint_move(c);
+    return FW_HOMING_GOING;
 }
 
 typedef struct {
@@ -128,7 +177,7 @@ typedef struct {
  * homing.  on/high: its low and high switch; pos: steps emitted, read after the switches. */
 static tse_real axis_want(fw_controller *c, const home_speeds *hs, int k, bool on, bool high, int32_t pos)
 {
-    fw_homing *h = &c->home;
+    fw_homing *h = &c->tick.home;
     const uint8_t bit = (uint8_t)(1u << k);
     switch ((fw_home_axis)h->axis[k]) {
     case HOME_AXIS_LEAVE:
@@ -170,7 +219,7 @@ static tse_real axis_want(fw_controller *c, const home_speeds *hs, int k, bool o
 /* Slide k has come to rest (asked speed and speed both zero): the next phase. */
 static void axis_at_rest(fw_controller *c, int k, bool on)
 {
-    fw_homing *h = &c->home;
+    fw_homing *h = &c->tick.home;
     const uint8_t bit = (uint8_t)(1u << k);
     if (h->axis[k] == HOME_AXIS_LEAVE && (h->released & bit)) {
         if (on) {
@@ -189,42 +238,41 @@ static void axis_at_rest(fw_controller *c, int k, bool on)
     }
 }
 
-void fw_homing_tick(fw_controller *c)
+fw_homing_outcome fw_homing_tick(fw_controller *c)
 {
-    fw_homing *h = &c->home;
+    fw_homing *h = &c->tick.home;
     if (h->phase == HOME_TO_POSE) {
-        /* The joint move has ended (fw_control_tick runs it as a source). */
-        if (h->abort) {
-            finish(c, false);
-            return;
-        }
+        /* The joint move has ended (motion.c runs it as a source). */
+        if (h->abort)
+            return finish(c, false);
         for (int k = 0; k < 6; ++k)
-            c->pose[k] = c->geom.home_pose[k];
-        c->pose_known = true;
-        finish(c, true);
-        return;
+            c->tick.pose[k] = c->tick.geom.home_pose[k];
+        c->tick.pose_known = true;
+        return finish(c, true);
     }
+    if (h->phase == HOME_PATH_CHECK)
+        return path_check_tick(c);
     if (stepgen_queued(&c->sg) >= 2u)
-        return;
+        return FW_HOMING_GOING;
 
     const tse_real dt = TSE_R(1.0) / (tse_real)c->cfg.segment_hz;
-    const tse_real accel = ACCEL_SHARE * c->lim.slide_amax;
+    const tse_real accel = ACCEL_SHARE * c->tick.lim.slide_amax;
     const tse_real dv = accel * dt;
-    const tse_real spm = (tse_real)c->params.v[FP_STEPS_PER_M];
+    const tse_real spm = (tse_real)c->tick.params.v[FP_STEPS_PER_M];
     home_speeds hs;
-    hs.v_home = (tse_real)c->params.v[FP_HOMING_SPEED] * TSE_R(1e-6);
+    hs.v_home = (tse_real)c->tick.params.v[FP_HOMING_SPEED] * TSE_R(1e-6);
     /* Homing moves slides like any motion: within the slide speed limit and what the step
      * generator can step (both in lim.slide_vmax), however fast homing_speed asks. */
-    if (hs.v_home > c->lim.slide_vmax)
-        hs.v_home = c->lim.slide_vmax;
+    if (hs.v_home > c->tick.lim.slide_vmax)
+        hs.v_home = c->tick.lim.slide_vmax;
     hs.creep = CREEP_FRACTION * hs.v_home;
     const tse_real half_step_per_tick = TSE_R(0.5) * (tse_real)c->cfg.segment_hz / spm;
     if (hs.creep > half_step_per_tick)
         hs.creep = half_step_per_tick;
-    hs.backoff = (tse_real)c->params.v[FP_HOMING_BACKOFF] * TSE_R(1e-6);
+    hs.backoff = (tse_real)c->tick.params.v[FP_HOMING_BACKOFF] * TSE_R(1e-6);
     /* Braking from the homing speed covers v^2 / 2a, plus a tick at full speed per ramp step. */
     hs.brake = hs.v_home * hs.v_home / (TSE_R(2.0) * accel) + hs.v_home * dt;
-    hs.stroke = c->geom.p.s_max - c->geom.p.s_min;
+    hs.stroke = c->tick.geom.p.s_max - c->tick.geom.p.s_min;
     const uint16_t pressed = c->hal.inputs.limits(c->hal.inputs.ctx);
     int32_t pos[6];
     stepgen_positions(&c->sg, pos); /* after the switches: a release seen is in these steps */
@@ -241,17 +289,18 @@ void fw_homing_tick(fw_controller *c)
             axis_at_rest(c, k, on);
         if (h->axis[k] != HOME_AXIS_DONE)
             done = false;
-        target[k] = h->start_steps[k] + fw_to_steps(c, h->s[k]);
+        target[k] = h->start_steps[k] + fw_steps_of(&c->tick.params, h->s[k]);
     }
     if (moving) {
         stepgen_push(&c->sg, target);
-        return;
+        return FW_HOMING_GOING;
     }
     if (!stepgen_idle(&c->sg))
-        return;
+        return FW_HOMING_GOING;
     /* At rest: on to the home pose, or the end. */
     if (h->abort)
-        finish(c, false);
-    else if (done)
-        start_joint_move(c);
+        return finish(c, false);
+    if (done)
+        await_path_check(c);
+    return FW_HOMING_GOING;
 }

@@ -3,38 +3,11 @@
 #include "fw/quat.h"
 #include "fw/slide_check.h"
 #include "fw/validate.h"
+#include "fw/work.h"
 
 /* Planning keeps this fraction of every slide limit in hand for the step quantisation. */
 #define LIMIT_MARGIN TSE_R(0.95)
 #define MAX_STRETCH_ROUNDS 6
-
-void fw_move_pose_at(const fw_move *mv, tse_real u, tse_real pose[6])
-{
-    for (int k = 0; k < 3; ++k)
-        pose[k] = mv->from[k] + u * mv->dp[k];
-    tse_real q[4];
-    fw_quat_slerp(mv->q0, mv->q1, u, q);
-    fw_quat_to_rpy(q, &pose[3]);
-}
-
-void fw_move_pose(const fw_move *mv, tse_real t, tse_real pose[6])
-{
-    tse_real u, du, ddu;
-    fw_profile_eval(&mv->prof, t, &u, &du, &ddu);
-    if (t >= mv->prof.T) {
-        for (int k = 0; k < 6; ++k)
-            pose[k] = mv->to[k]; /* the end is the commanded pose, bit for bit */
-        return;
-    }
-    fw_move_pose_at(mv, u, pose);
-}
-
-tse_real fw_move_segment_time(const fw_move *mv, const fw_limits *lim, uint32_t k)
-{
-    if (k >= mv->segments)
-        return mv->prof.T;
-    return (tse_real)k / lim->segment_hz;
-}
 
 /* The slerp turns the plate about one world axis at a constant rate: the axis of q1 q0^-1 (q1 on
  * q0's side), times the angle per unit of u. */
@@ -269,6 +242,8 @@ int fw_move_blend(const fw_move *a, const fw_move *b, const tse_geometry *g, con
                          lim->segment_hz, a->q_from);
     tse_real t_prev = TSE_R(0.0);
     for (uint32_t s = 1; s <= total; ++s) {
+        if (fw_work_point())
+            return 1; /* stopped from outside (fw/work.h): no blend */
         tse_real t = (tse_real)s / lim->segment_hz;
         if (s == total)
             t = t0 + b->prof.T;

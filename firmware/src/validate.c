@@ -1,5 +1,6 @@
 #include "fw/validate.h"
 
+#include "fw/work.h"
 #include "tse/enclose.h"
 
 static void copy6(tse_real dst[6], const tse_real src[6])
@@ -37,6 +38,10 @@ int fw_validate_per_segment(const fw_move *mv, const tse_geometry *g, const fw_l
     v->unproven = false;
     tse_real t_prev = TSE_R(0.0);
     for (uint32_t s = 1; s <= mv->segments; ++s) {
+        if (fw_work_point()) {
+            res->reason = FW_REASON_STATE; /* stopped from outside (fw/work.h) */
+            return -1;
+        }
         const tse_real t = fw_move_segment_time(mv, lim, s);
         tse_real pose[6];
         fw_move_pose(mv, t, pose);
@@ -320,6 +325,10 @@ static __attribute__((noinline)) int prove(const fw_move *mv, const tse_geometry
                       : n <= FW_VALIDATE_WALK ? FW_VALIDATE_WORK - FW_VALIDATE_WALK
                                               : FW_VALIDATE_WORK;
     while (s0 < n) {
+        if (fw_work_point()) {
+            res->reason = FW_REASON_STATE; /* stopped from outside (fw/work.h) */
+            return -1;
+        }
         if (fw_validation_work(v) >= budget) {
             st->at = s0;
             copy6(st->q, seed); /* the last piece's centre, on the branch that passes at s0 */

@@ -1,6 +1,7 @@
 /* A user's parameter file with a set's values written into it (param_text_internal.h): every
  * byte the user wrote stays but the values that change, and what the file does not set is
  * appended. */
+#define _POSIX_C_SOURCE 200809L /* strndup */
 #include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -72,23 +73,21 @@ static void merge_line(out_text *o, const char *line, size_t len, const fw_param
         ++v0;
     while (v1 > v0 && is_blank(line[v1 - 1]))
         --v1;
-    /* As long as the reader takes them: a value may be any length (leading zeros, long digits). */
-    char *key = malloc(k1 - k0 + 1), *value = malloc(v1 - v0 + 1);
+    /* The line copied once, key and value cut in place: as long as the reader takes them (a
+     * value may be any length: leading zeros, long digits). */
+    char *copy = strndup(line, len);
     param_key k;
     int32_t raw;
     char err[256];
     int known = 0;
-    if (key && value) {
-        memcpy(key, line + k0, k1 - k0);
-        key[k1 - k0] = '\0';
-        memcpy(value, line + v0, v1 - v0);
-        value[v1 - v0] = '\0';
-        known = param_lookup(key, &k) == 0 && param_from_text(&k, value, &raw, err, sizeof err) == 0;
+    if (copy) {
+        copy[k1] = '\0'; /* k1 <= the '=' < v0: the value is untouched */
+        copy[v1] = '\0';
+        known = param_lookup(copy + k0, &k) == 0 && param_from_text(&k, copy + v0, &raw, err, sizeof err) == 0;
+        free(copy);
     } else {
         o->failed = 1;
     }
-    free(key);
-    free(value);
     if (!known) {
         put(o, line, len); /* not reached for a file that reads */
         return;

@@ -4,7 +4,7 @@
 
 #include "decimal_text.h"
 #include "field_type.h"
-#include "fw/controller.h"
+#include "fw/command_table.h"
 #include "fw/params.h"
 #include "fw/proto.h"
 #include "outputs.h"

@@ -38,12 +38,12 @@ int traj_checker_push(traj_checker *c, uint32_t dt_us, const double pose[6], boo
 
 void traj_checker_peaks(const traj_checker *c, double *v_peak, double *a_peak)
 {
-    *v_peak = (double)c->t.chk.v_ratio;
-    *a_peak = (double)c->t.chk.a_ratio;
+    *v_peak = (double)c->t.check.chk.v_ratio;
+    *a_peak = (double)c->t.check.chk.a_ratio;
 }
 
 void traj_checker_take_peaks(traj_checker *c, double *v_peak, double *a_peak)
 {
     traj_checker_peaks(c, v_peak, a_peak);
-    c->t.chk.v_ratio = c->t.chk.a_ratio = TSE_R(0.0);
+    c->t.check.chk.v_ratio = c->t.check.chk.a_ratio = TSE_R(0.0);
 }

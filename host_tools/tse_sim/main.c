@@ -3,16 +3,22 @@
  *   tse-sim --iface vcan0 --node N [--params FILE] [--start S] [--fault SPEC]
  *   tse-sim --write-params FILE
  *
- * The firmware runs unchanged on hal/posix: a 1 kHz control tick from timerfd, each followed by
- * its 200 step interrupts against the plant (whose clock is the step count, so the simulated
- * physics is exact whatever the scheduler does).  State changes, faults and plant breaches are
- * logged on stdout; SIGINT or SIGTERM stops it cleanly.  The parameter file is the SI text of
+ * The firmware runs unchanged on hal/posix, in the board's contexts (fw/runtime.h): a tick thread
+ * runs the 1 kHz control tick, each followed by its 200 step interrupts against the plant (whose
+ * clock is the step count, so the simulated physics is exact whatever the scheduler does); the
+ * main thread is the controller's thread (frames, planning, validation), waiting on the bus; a
+ * late period waits (bounded) until it has taken the frames that came before the period
+ * (hal_posix/ticker.h).
+ * State changes, faults and plant breaches are logged on stdout from the tick thread; SIGINT or
+ * SIGTERM stops it cleanly.  The parameter file is the SI text of
  * host_tools/params (param_store.h): one it cannot read or the controller refuses stops it before
  * it starts (exit 2), and is never written.  --fault puts hal/fault between the firmware and the
  * bus, the switches and the plant's drives (fault_spec.h); its windows are logged as they open and
  * close, and what it did when tse-sim stops. */
 #define _POSIX_C_SOURCE 200809L
 #include <errno.h>
+#include <sched.h>
+#include <stdatomic.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,9 +27,13 @@
 #include <time.h>
 
 #include "fw/controller.h"
+#include "fw/inspect.h"
 #include "fw/limits.h"
+#include "fw/proto.h"
+#include "fw/runtime.h"
 #include "hal_posix/plant.h"
 #include "hal_posix/posix_hal.h"
+#include "hal_posix/ticker.h"
 #include "text.h"
 #include "estop_watch.h"
 #include "fault_spec.h"
@@ -33,17 +43,24 @@
 /* The rates fw/limits.h promises the host tools (tsectl judges paths and sets with them). */
 #define CONTROL_HZ FW_SEGMENT_HZ
 #define STEP_HZ FW_STEP_HZ
+/* The longest a late control period waits for this thread to take the frames that came before it
+ * (hal_posix/ticker.h), in this thread's CPU time: 50 ms, a row's validation many times over even
+ * in a VM under TCG (whose threads are charged the time the host takes the VM's CPU away), short
+ * beside a move for a thread busy validating a blend.  Its wall-time backstop is 1 s. */
+#define LATE_WAIT_US 50000u
 
-static posix_ticker ticker;
+static posix_ticker ticker = {.fd = -1};
+static volatile sig_atomic_t quit;
 
 static void on_signal(int sig)
 {
     (void)sig;
-    ticker.stop = 1;
+    quit = 1;
 }
 
 typedef struct {
-    fw_controller fw;
+    fw_controller_mem fw_mem;
+    fw_controller *fw;
     tse_plant plant;
     fw_state last_state;
     fw_fault last_fault;
@@ -111,16 +128,17 @@ static void log_fault_counts(const sim *s)
            c->silenced, c->bus_off_lost, c->send_refused, (unsigned long long)s->fstepper.lost_total);
 }
 
+/* The tick thread: the control tick, then what tse-sim watches of it (fw/runtime.h: after
+ * fw_control_tick, in its context). */
 static void control(void *arg)
 {
     sim *s = arg;
     log_fault_windows(s);
-    fw_poll(&s->fw);
-    fw_control_tick(&s->fw);
+    fw_control_tick(s->fw);
     if (s->plant.breaches & ~s->reported) {
         printf("tse-sim: plant: %s (breaches 0x%x)\n", s->plant.first_breach, s->plant.breaches);
         s->reported = s->plant.breaches;
-        fw_report_fault(&s->fw, FW_FAULT_PLANT);
+        fw_report_fault(s->fw, FW_FAULT_PLANT);
     }
     if (s->awaiting_first_step && s->plant.first_after_mark) {
         printf("tse-sim: first step %.3f ms after the command was taken\n",
@@ -130,42 +148,67 @@ static void control(void *arg)
     uint64_t after;
     if (s->plant.pulses && estop_watch_pulse(&s->estop, s->plant.last_pulse_tick, &after))
         printf("tse-sim: a step %.3f ms after the e-stop\n", (double)after * 1e3 / STEP_HZ);
-    if (s->fw.state != s->last_state || s->fw.fault != s->last_fault) {
-        if (s->fw.state == FW_STATE_MOVING || s->fw.state == FW_STATE_HOMING) {
+    const fw_state state = fw_state_of(s->fw);
+    const fw_fault fault = fw_fault_of(s->fw);
+    if (state != s->last_state || fault != s->last_fault) {
+        if (state == FW_STATE_MOVING || state == FW_STATE_HOMING) {
             s->awaiting_first_step = true;
             s->accepted_tick = s->plant.tick;
             plant_mark(&s->plant);
             printf("tse-sim: motion accepted at t = %.3f s\n", (double)s->plant.tick / STEP_HZ);
         }
-        if (s->last_state == FW_STATE_ESTOP && s->fw.state != FW_STATE_ESTOP)
+        if (s->last_state == FW_STATE_ESTOP && state != FW_STATE_ESTOP)
             estop_watch_cleared(&s->estop, s->plant.tick);
-        if (s->fw.state == FW_STATE_ESTOP && s->last_state != FW_STATE_ESTOP) {
+        if (state == FW_STATE_ESTOP && s->last_state != FW_STATE_ESTOP) {
             estop_watch_taken(&s->estop, s->plant.tick);
             printf("tse-sim: e-stop taken; the last step was %.3f ms before it\n",
                    (double)(s->plant.tick - s->plant.last_pulse_tick) * 1e3 / STEP_HZ);
         }
-        printf("tse-sim: state %s, fault %s\n", name_of(proto_state_names, s->fw.state),
-               name_of(proto_fault_names, s->fw.fault));
-        if (s->fw.state == FW_STATE_IDLE && s->fw.homed)
+        printf("tse-sim: state %s, fault %s\n", name_of(proto_state_names, state), name_of(proto_fault_names, fault));
+        if (state == FW_STATE_IDLE && fw_homed_of(s->fw))
             log_pose(s, "at rest");
-        s->last_state = s->fw.state;
-        s->last_fault = s->fw.fault;
+        s->last_state = state;
+        s->last_fault = fault;
     }
     fflush(stdout);
 }
 
+/* A step tick under way in the tick thread.  On the board nothing runs beside a step tick: the
+ * controller's thread, halting stepping for an ESTOP frame, switches the drives off after any
+ * step tick that decided its pulses before the halt.  Here the two are threads: the switch waits
+ * for that step tick (at most one, a microsecond) before it reaches the drives. */
+static atomic_bool in_step;
+static hal_stepper drives;
+
 static void step(void *arg)
 {
     sim *s = arg;
-    fw_step_tick(&s->fw);
+    atomic_store(&in_step, true);
+    atomic_thread_fence(memory_order_seq_cst); /* before the step generator reads its halt */
+    fw_step_tick(s->fw);
+    atomic_store(&in_step, false);
     plant_tick(&s->plant);
+}
+
+static void enable_after_step(void *ctx, bool on)
+{
+    if (!on)
+        while (atomic_load(&in_step))
+            sched_yield();
+    drives.enable(ctx, on);
+}
+
+/* The controller's thread waits for the tick (fw_config.await): the next control call. */
+static void await_tick(void *ctx)
+{
+    posix_ticker_await(ctx);
 }
 
 static int usage(const char *why)
 {
     fprintf(stderr,
             "tse-sim: %s\n"
-            "usage: tse-sim --iface IFACE --node N [--params FILE] [--start S] [--board-rules] [--fault SPEC]\n"
+            "usage: tse-sim --iface IFACE --node N [--params FILE] [--start S] [--fault SPEC]\n"
             "       tse-sim --write-params FILE\n"
             "  --params FILE        the controller's parameters, as 'name = value' text in SI units\n"
             "                       (m, rad, m/s, ...; or as the name says: _ms, _ns, _kbps, _deg);\n"
@@ -177,9 +220,6 @@ static int usage(const char *why)
             "                       as a template and exit (refused if FILE exists)\n"
             "  --start S            slide positions at power-up [m] (default 0.05: below the homing\n"
             "                       switches at 0.2 m, so homing first leaves them)\n"
-            "  --board-rules        run by the board's rules where they differ from the simulator's:\n"
-            "                       a move committed while another runs is refused (the board does not\n"
-            "                       blend yet) instead of blended\n"
             "%s",
             why, fault_spec_help);
     return 2;
@@ -210,7 +250,6 @@ int main(int argc, char **argv)
     static fault_plan plan;
     long node = -1;
     double start = 0.05;
-    bool board_rules = false;
     for (int i = 1; i < argc; ++i) {
         const int v = i + 1 < argc;
         char *end = NULL;
@@ -234,8 +273,6 @@ int main(int argc, char **argv)
                 fprintf(stderr, "tse-sim: --fault: %s\n", err);
                 return usage("bad --fault");
             }
-        } else if (!strcmp(argv[i], "--board-rules")) {
-            board_rules = true;
         } else if (!strcmp(argv[i], "--start") && v) {
             if (text_number(argv[++i], &start) != 0 || !(start > -0.01 && start < 0.91))
                 return usage("--start takes a slide position in metres inside the stroke");
@@ -275,16 +312,18 @@ int main(int argc, char **argv)
         hal.inputs = fault_inputs_hal(&s.finputs);
         hal.stepper = fault_stepper_hal(&s.fstepper);
     }
-    /* The board refuses a move committed during another (board/main.c): --board-rules does too. */
-    const fw_config cfg = {(uint8_t)node, CONTROL_HZ, STEP_HZ, board_rules};
-    if (fw_init(&s.fw, &hal, &cfg) != 0) {
+    drives = hal.stepper;
+    hal.stepper.enable = enable_after_step;
+    const fw_config cfg = {(uint8_t)node, CONTROL_HZ, STEP_HZ, await_tick, &ticker};
+    s.fw = fw_init(&s.fw_mem, &hal, &cfg);
+    if (!s.fw) {
         fprintf(stderr, "tse-sim: the controller did not start\n");
         return 1;
     }
     /* fw_init falls back to the defaults when it cannot adopt the stored set: what depends on the
      * controller's rates (the STEP pulse and DIR set-up against the step interrupts) is judged
      * only there.  The file asked for this set: running with another would mislead. */
-    if (store.stored && memcmp(&s.fw.params, &store.set, sizeof store.set) != 0) {
+    if (store.stored && memcmp(fw_params_of(s.fw), &store.set, sizeof store.set) != 0) {
         fprintf(stderr,
                 "tse-sim: %s: the controller cannot adopt this set at its %u Hz step interrupts (step_pulse_ns "
                 "must end within one and leave as long low before the next step at step_rate_max; dir_setup_ns "
@@ -299,13 +338,18 @@ int main(int argc, char **argv)
     /* The plant follows the controller's parameters (stroke, steps per metre, limits, where the
      * homing switches sit, the drivers' timing the controller programmed in fw_init). */
     const double starts[6] = {start, start, start, start, start, start};
-    const fw_param_set *fp = &s.fw.params;
+    const fw_param_set *fp = fw_params_of(s.fw);
+    stepgen_config sc; /* as the controller derived it from the set it adopted */
+    if (fw_stepgen_config_from_params(fp, STEP_HZ, CONTROL_HZ, &sc) != FW_RULE_NONE) {
+        fprintf(stderr, "tse-sim: the controller's own parameter set does not derive its step timing\n");
+        return 1;
+    }
     plant_config pc = {(double)fp->v[FP_STEPS_PER_M], (double)fp->v[FP_SLIDE_VMAX] * 1e-6,
-                       (double)fp->v[FP_SLIDE_AMAX] * 1e-6, 0.05, STEP_HZ, s.fw.sg.cfg.min_step_interval,
+                       (double)fp->v[FP_SLIDE_AMAX] * 1e-6, 0.05, STEP_HZ, sc.min_step_interval,
                        (uint32_t)fp->v[FP_STEP_PULSE_NS], (uint32_t)fp->v[FP_DIR_SETUP_NS], {0}};
     for (int k = 0; k < 6; ++k)
         pc.home_sw[k] = (double)fp->v[FP_HOME_SW_1 + k] * 1e-6;
-    plant_init(&s.plant, &pc, &s.fw.geom, starts);
+    plant_init(&s.plant, &pc, fw_geometry_of(s.fw), starts);
     s.last_state = FW_STATE_BOOT;
     estop_watch_init(&s.estop);
 
@@ -314,26 +358,38 @@ int main(int argc, char **argv)
     sa.sa_handler = on_signal;
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
-    printf("tse-sim: node %ld on %s, %u Hz control, %u Hz steps%s\n", node, iface, CONTROL_HZ, STEP_HZ,
-           board_rules ? ", the board's rules (no blending)" : "");
+    printf("tse-sim: node %ld on %s, %u Hz control, %u Hz steps\n", node, iface, CONTROL_HZ, STEP_HZ);
     if (fault)
         printf("tse-sim: injecting faults: %s\n", fault);
     fflush(stdout);
-    hal_ticker t = posix_ticker_hal(&ticker);
-    const int rc = t.start(t.ctx, CONTROL_HZ, control, STEP_HZ, step, &s);
+    const posix_ticker_config tc = {CONTROL_HZ, STEP_HZ, control, step, &s, LATE_WAIT_US, can.fd};
+    const int rc = posix_ticker_start(&ticker, &tc);
+    /* This thread is the controller's: frames as they come, and the periodic frames every
+     * millisecond at least.  fw_poll takes every frame the bus holds, so after it the thread has
+     * caught up with the bus as it was when the poll began (a late period waits for that). */
+    while (rc == 0 && !quit) {
+        const uint64_t look = posix_ticker_now_ns();
+        fw_poll(s.fw);
+        posix_ticker_caught_up(&ticker, look);
+        posix_ticker_thread_wait(&ticker, can.fd, 1);
+    }
+    posix_ticker_stop(&ticker);
     posix_can_close(&can);
     log_fault_counts(&s);
     /* Late periods: the host did not schedule tse-sim in time (a loaded machine, a VM).  The ticker
-     * makes them up at once, and the plant's clock is the step count, so the simulated motion is
-     * exact; only frames in and out were that much later than on a board. */
+     * makes them up as soon as this thread has taken the frames that came before each, and the
+     * plant's clock is the step count, so the simulated motion is exact; only frames in and out
+     * were that much later than on a board. */
     printf("tse-sim: stopped after %llu control periods (%.1f s), %llu pulses\n", (unsigned long long)ticker.periods,
            (double)ticker.periods / CONTROL_HZ, (unsigned long long)s.plant.pulses);
     if (ticker.overruns)
         printf("tse-sim: %llu of them (%.1f%%) ran late: the host scheduled tse-sim up to %.0f ms behind its %u Hz "
-               "tick (a busy machine or a VM); they were made up at once, so the simulated motion is exact and "
-               "only its CAN frames were that much later than a board's\n",
+               "tick (a busy machine or a VM); they were made up once the frames that came before each were taken "
+               "(%llu waited for the controller's thread, %llu of those to the %.0f ms bound), so the simulated motion "
+               "is exact and only its CAN frames were that much later than a board's\n",
                (unsigned long long)ticker.overruns, 100.0 * (double)ticker.overruns / (double)ticker.periods,
-               (double)ticker.max_behind * 1000.0 / CONTROL_HZ, CONTROL_HZ);
+               (double)ticker.max_behind * 1000.0 / CONTROL_HZ, CONTROL_HZ, (unsigned long long)ticker.late_waits,
+               (unsigned long long)ticker.late_timeouts, LATE_WAIT_US / 1000.0);
     else
         printf("tse-sim: none of them ran late\n");
     return rc == 0 ? 0 : 1;

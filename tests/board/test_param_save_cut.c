@@ -133,7 +133,7 @@ static fw_param_set read_all(void)
         const int32_t v[1] = {id};
         send(PM_PARAM_GET, v);
     }
-    fw_poll(&C);
+    fw_poll(C);
     fw_param_set s;
     bool seen[FP_COUNT] = {false};
     for (unsigned i = 0; i < F.tx_count; ++i) {
@@ -160,7 +160,7 @@ static void send_set(uint32_t n)
         const int32_t v[2] = {varied[i].id, value_of(i, n)};
         send(PM_PARAM_SET, v);
     }
-    fw_poll(&C);
+    fw_poll(C);
     unsigned acks, rejects;
     uint8_t reason = 0;
     answers(FN_PARAM_SET, &acks, &rejects, &reason);
@@ -175,7 +175,7 @@ static char save(void)
     F.tx_count = 0;
     const int32_t v[1] = {SAVE_MAGIC};
     send(PM_PARAM_SAVE, v);
-    fw_poll(&C);
+    fw_poll(C);
     unsigned acks, rejects;
     uint8_t reason = 0;
     answers(FN_PARAM_SAVE, &acks, &rejects, &reason);
@@ -193,9 +193,8 @@ static void boot(void)
     fw_hal hal;
     fake_hal_init(&F, &hal);
     hal.storage = param_log_hal(&plog);
-    const fw_config cfg = {1, 1000, 100000, false};
-    assert_int_equal(fw_init(&C, &hal, &cfg), 0);
-    assert_int_equal(C.state, FW_STATE_DISABLED);
+    restart(&hal);
+    assert_int_equal(fw_state_of(C), FW_STATE_DISABLED);
 }
 
 /* Which of sets a and b s is: 'a', 'b', or a failure naming the parameters that are neither. */

@@ -9,6 +9,7 @@ import select
 import socket
 import struct
 import subprocess
+import threading
 import time
 
 import can
@@ -71,6 +72,48 @@ class RecordBus(can.BusABC):
         self._sock.close()
 
 
+def frame_bits(length):
+    """A standard frame's time on the bus in bits, as the bridge takes it (docs/emulator.md)."""
+    return 44 + 8 * length + 3
+
+
+class BusFlood(threading.Thread):
+    """FRAME (a can.Message) sent on BUS, the emulator's CAN socket, over and over at the bus's full
+    rate in virtual time: the bridge puts its frames on the bus back to back, and holds 64 waiting
+    before it stops reading the socket, so the flood keeps about AHEAD waiting (what virtual time
+    has carried, counted at frame_bits, plus AHEAD) and the frames of the bus's other users queue
+    behind those only.  Stop with stop(); then `sent` and `seconds` (virtual) say what it did."""
+
+    def __init__(self, em, bus, frame, bitrate=500000, ahead=48):
+        super().__init__(daemon=True)
+        self.em, self.bus, self.frame, self.ahead = em, bus, frame, ahead
+        self.frame_ns = frame_bits(frame.dlc) * 1e9 / bitrate
+        self.sent = 0
+        self.seconds = 0.0
+        self.error = None
+        self._halt = threading.Event()
+
+    def run(self):
+        try:
+            t0 = self.em.time_ns()
+            while not self._halt.is_set():
+                elapsed = self.em.time_ns() - t0
+                self.seconds = elapsed / 1e9
+                for _ in range(int(elapsed / self.frame_ns) + self.ahead - self.sent):
+                    self.bus.send(self.frame)
+                    self.sent += 1
+                time.sleep(0.002)
+        except Exception as e:  # noqa: BLE001  (reported by stop())
+            self.error = e
+
+    def stop(self):
+        self._halt.set()
+        self.join(30)
+        if self.error:
+            raise self.error
+        return self.sent
+
+
 class Emulator:
     """emu/run.sh on ELF, its files in WORKDIR (flash image flash.bin unless FLASH is given)."""
 
@@ -93,6 +136,7 @@ class Emulator:
         self._proc = None
         self._rig = None
         self._rig_buf = b""
+        self._rig_lock = threading.Lock()  # a request and its answer, one thread at a time
 
     def __enter__(self):
         self.start()
@@ -143,7 +187,12 @@ class Emulator:
         return RecordBus(self.can_path, **kwargs)
 
     def rig(self, request, timeout=10.0):
-        """The rig's answer lines to REQUEST, without the final `ok`; RigError on `error: ...`."""
+        """The rig's answer lines to REQUEST, without the final `ok`; RigError on `error: ...`.
+        Threads may share the rig: one request at a time."""
+        with self._rig_lock:
+            return self._rig_request(request, timeout)
+
+    def _rig_request(self, request, timeout):
         self._rig.sendall(request.encode() + b"\n")
         lines = []
         end = time.monotonic() + timeout

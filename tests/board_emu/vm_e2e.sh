@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
 # The end-to-end scenario (tests/vcan/e2e_target.sh) on the production image on the emulated
 # board, driven by tsectl on the harness's vcan0 (tests/vcan/harness.sh --board), and the
-# differential test: the same scenario on tse-sim run by the board's rules (--board-rules) must
-# give the same transcript, the sequence of every command's ACK or REJECT (with its reason) and
+# differential test: the same scenario on tse-sim must give the same transcript, the sequence of every command's ACK or REJECT (with its reason) and
 # the final commanded slides in steps.
 #
 #   vm_e2e.sh ELF HOST_TOOLS WORKDIR
@@ -23,7 +22,6 @@ for b in tsectl/tsectl tse-sim tse-kin tse-rig tse-canbridge; do
   bins+=("$tools/$b")
 done
 mkdir -p "$work"
-echo --board-rules >"$work/sim_args.txt"
 transcript() { sed -n '/=== transcript begin/,/=== transcript end/p' "$1" | sed '1d;$d'; }
 
 rc=0
@@ -31,7 +29,6 @@ for target in sim board; do
   out=$work/$target.out
   args=()
   [ "$target" = board ] && args=(--board "$elf")
-  [ "$target" = sim ] && args=(--file "$work/sim_args.txt")
   echo "=== the scenario on $target"
   t0=$(date +%s)
   HARNESS_TIMEOUT=${HARNESS_TIMEOUT:-1500} bash "$vcan/harness.sh" ${args[@]+"${args[@]}"} --file "$vcan/target.sh" \
@@ -43,7 +40,7 @@ for target in sim board; do
   [ $r -eq 0 ] || rc=1
 done
 
-echo "=== the differential test: tse-sim --board-rules against the board"
+echo "=== the differential test: tse-sim against the board"
 # Every command's answer the same, line for line.  The final commanded slides in whole steps the
 # same too, but for a slide whose exact position (tse-kin's double inverse kinematics of the final
 # pose, an oracle independent of both) lies within the float build's accuracy of a rounding

@@ -1,5 +1,7 @@
 #include "fake_hal.h"
 
+#include "fw/runtime.h"
+
 #include <string.h>
 
 static int can_send(void *ctx, const hal_can_frame *fr)
@@ -152,15 +154,20 @@ void fake_send_msg(fake_hal *f, uint8_t node, proto_msg m, const int32_t *values
 
 void fake_run(fake_hal *f, fw_controller *c, uint32_t ms)
 {
-    const uint32_t ticks = c->cfg.step_hz / c->cfg.segment_hz;
-    const uint32_t per_ms = c->cfg.segment_hz / 1000u;
-    for (uint32_t m = 0; m < ms * per_ms; ++m) {
-        fw_poll(c);
-        fw_control_tick(c);
-        for (uint32_t t = 0; t < ticks; ++t)
-            fw_step_tick(c);
-        f->now_us += 1000000u / c->cfg.segment_hz;
+    const uint32_t hz = fw_config_of(c)->segment_hz;
+    for (uint32_t m = 0; m < ms * (hz / 1000u); ++m) {
+        fw_run_period(c, NULL, NULL);
+        f->now_us += 1000000u / hz;
     }
+}
+
+void fake_tick_alone(fake_hal *f, fw_controller *c)
+{
+    const fw_config *cfg = fw_config_of(c);
+    f->now_us += 1000000u / cfg->segment_hz;
+    fw_control_tick(c);
+    for (uint32_t k = 0; k < cfg->step_hz / cfg->segment_hz; ++k)
+        fw_step_tick(c);
 }
 
 const hal_can_frame *fake_last(const fake_hal *f, uint8_t function, unsigned from)

@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "fw/controller.h"
+#include "fw/proto.h"
 
 #define FAKE_QUEUE 4096
 /* Where the switches sit by default: 0.2 m at 1.28M steps/m, the default home_sw_k. */
@@ -62,9 +63,13 @@ int fake_encode(uint8_t node, proto_msg m, const int32_t *values, hal_can_frame 
 /* Encodes a message to `node` and queues it for the controller (the values must be in range). */
 void fake_send_msg(fake_hal *f, uint8_t node, proto_msg m, const int32_t *values);
 
-/* Runs the controller for ms milliseconds of simulated time: every step tick, every control tick
- * and a poll per control tick. */
+/* Runs the controller for ms milliseconds of simulated time, a control period at a time
+ * (fw_run_period), the clock advanced after each. */
 void fake_run(fake_hal *f, fw_controller *c, uint32_t ms);
+
+/* One control period with only the control tick and its step ticks running, as when the
+ * controller's thread is not scheduled (no fw_poll): the clock advanced first. */
+void fake_tick_alone(fake_hal *f, fw_controller *c);
 
 /* The newest frame the controller sent with this function code (NULL if none), searching from
  * index `from`. */

@@ -12,7 +12,8 @@
 #include <cmocka.h>
 
 fake_hal F;
-fw_controller C;
+fw_controller *C;
+static fw_controller_mem C_mem;
 uint8_t seq;
 uint8_t traj_id;
 
@@ -22,9 +23,22 @@ void start(void)
     fake_hal_init(&F, &hal);
     for (int k = 0; k < 6; ++k)
         F.steps[k] = FAKE_SWITCH_AT + 3000 + 100 * k; /* just above the switches: homing is short */
-    const fw_config cfg = {1, 1000, 100000, false};
-    assert_int_equal(fw_init(&C, &hal, &cfg), 0);
+    restart(&hal);
     seq = 1;
+}
+
+void restart(const fw_hal *hal)
+{
+    const fw_config cfg = {1, 1000, 100000, NULL, NULL};
+    C = fw_init(&C_mem, hal, &cfg);
+    assert_non_null(C);
+}
+
+fw_inspection now(void)
+{
+    fw_inspection i;
+    fw_inspect(C, &i);
+    return i;
 }
 
 void send(proto_msg m, const int32_t *v)
@@ -49,7 +63,7 @@ void run(uint32_t ms)
 {
     for (uint32_t t = 0; t < ms; t += 10) {
         heartbeat();
-        fake_run(&F, &C, 10);
+        fake_run(&F, C, 10);
     }
 }
 
@@ -98,18 +112,31 @@ char answer(unsigned from, uint8_t function, uint8_t *reason)
     return 0;
 }
 
+char set_param(uint16_t id, int32_t value, uint8_t *reason, uint8_t *field)
+{
+    const unsigned from = F.tx_count;
+    const int32_t v[2] = {id, value};
+    send(PM_PARAM_SET, v);
+    fw_poll(C);
+    const char got = answer(from, proto_table[PM_PARAM_SET].function, reason);
+    const hal_can_frame *r = fake_last(&F, 0x03, from);
+    if (got == 'r' && field)
+        *field = r->data[5];
+    return got;
+}
+
 void home(void)
 {
     cmd(PM_ENABLE);
     run(20);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
     cmd(PM_HOME);
     run(100);
-    assert_int_equal(C.state, FW_STATE_HOMING);
-    for (int i = 0; i < 200 && C.state == FW_STATE_HOMING; ++i)
+    assert_int_equal(fw_state_of(C), FW_STATE_HOMING);
+    for (int i = 0; i < 200 && fw_state_of(C) == FW_STATE_HOMING; ++i)
         run(100);
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_true(C.homed);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    assert_true(fw_homed_of(C));
 }
 
 const double NEAR[6] = {0.05, 0.0, 1.0, 0, 0, 0};
@@ -139,12 +166,12 @@ void reach(fw_state s)
         move_to(NEAR, 3000);
         run(1000);
         cmd(PM_STOP);
-        fw_poll(&C);
+        fw_poll(C);
         break;
     case FW_STATE_FAULT:
         cmd(PM_ENABLE);
         run(20);
-        fake_run(&F, &C, 700); /* no heartbeat past the 500 ms watchdog */
+        fake_run(&F, C, 700); /* no heartbeat past the 500 ms watchdog */
         break;
     case FW_STATE_ESTOP:
         cmd(PM_ESTOP);
@@ -153,7 +180,7 @@ void reach(fw_state s)
     default:
         fail();
     }
-    assert_int_equal(C.state, s);
+    assert_int_equal(fw_state_of(C), s);
 }
 
 static proto_message decode_from(const hal_can_frame *f)

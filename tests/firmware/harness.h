@@ -7,10 +7,14 @@
 #include <stdint.h>
 
 #include "fake_hal.h"
-#include "fw/controller_internal.h"
+#include "fw/command_table.h"
+#include "fw/controller.h"
+#include "fw/inspect.h"
+#include "fw/runtime.h"
+#include "fw/testing.h"
 
 extern fake_hal F;
-extern fw_controller C;
+extern fw_controller *C;
 extern uint8_t seq; /* the next sequence number cmd() and move_to() use */
 
 /* A pose near the home pose that every test may move to. */
@@ -18,6 +22,12 @@ extern const double NEAR[6];
 
 /* A fresh controller, node 1, 1 kHz segments, 100 kHz steps, slides just above their switches. */
 void start(void);
+
+/* The controller started again (a power cycle) on hal, as start() configures it. */
+void restart(const fw_hal *hal);
+
+/* The controller's observable state now (fw/inspect.h). */
+fw_inspection now(void);
 
 void send(proto_msg m, const int32_t *v);
 /* A command whose only field is its sequence number. */
@@ -40,6 +50,9 @@ char answer(unsigned from, uint8_t function, uint8_t *reason);
 proto_message reject_of(unsigned from, uint8_t function);
 /* The newest STATUS since tx index `from`, decoded (fails the test if none). */
 proto_message status_since(unsigned from);
+/* PARAM_SET of parameter id to value, taken at once (one poll): what the controller answered
+ * ('a', 'r' with its reason and, for a refusal, the field it names; 0 nothing). */
+char set_param(uint16_t id, int32_t value, uint8_t *reason, uint8_t *field);
 /* Enable and home; ends IDLE and homed. */
 void home(void);
 /* A fresh controller brought into state s. */

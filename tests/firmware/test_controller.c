@@ -45,7 +45,7 @@ static void test_state_table(void **state)
                 break;
             }
             case PM_TRAJ_COMMIT: {
-                stage(s, C.pose_known ? C.pose : NEAR);
+                stage(s, now().pose_known ? now().pose : NEAR);
                 const int32_t v[4] = {s, 50000, PROTO_TRAJ_FIRST | PROTO_TRAJ_LAST, s};
                 send(PM_TRAJ_COMMIT, v);
                 break;
@@ -75,7 +75,7 @@ static void test_state_table(void **state)
                 send(rows[r].cmd, v);
             }
             }
-            fw_poll(&C);
+            fw_poll(C);
             uint8_t reason = 0;
             const char got = answer(from, proto_table[rows[r].cmd].function, &reason);
             if ((want == '-' ? 0 : want) != got)
@@ -107,44 +107,19 @@ static void test_move_lands_on_target_steps(void **state)
     move_to(target, 1000);
     run(50);
     assert_int_equal(answer(from, 0x0D, NULL), 'a');
-    for (int i = 0; i < 100 && C.state != FW_STATE_IDLE; ++i)
+    for (int i = 0; i < 100 && fw_state_of(C) != FW_STATE_IDLE; ++i)
         run(100);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
     /* The slides sit on the target's solution, to the step, in true coordinates: the fake's
      * switches are pressed at and below 256000 steps, which is where home_sw_k = 0.2 m puts them at
      * 1.28M steps/m, so the edge homing latches is the true step 256001. */
     tse_ik_result r;
     const double wire[6] = {0.1, -0.05, 1.1, 0.1, -0.05, 0.2};
-    assert_int_equal(tse_ik(&C.geom, wire, NULL, &r), TSE_OK);
+    assert_int_equal(tse_ik(fw_geometry_of(C), wire, NULL, &r), TSE_OK);
     for (int k = 0; k < 6; ++k) {
         const long want = lround(r.q[k] * 1280000.0);
         assert_int_equal(F.steps[k], want);
     }
-}
-
-/* With no_blend (the board), a move committed during another is refused as out of state and
- * the running move goes on untouched to its own target. */
-static void test_no_blend(void **state)
-{
-    (void)state;
-    reach(FW_STATE_IDLE);
-    C.cfg.no_blend = true;
-    const double first[6] = {0.06, 0.0, 1.05, 0, 0, 0}, second[6] = {0.06, 0.06, 1.10, 0, 0, 0.05};
-    move_to(first, 1500);
-    run(200);
-    const unsigned from = F.tx_count;
-    move_to(second, 1500);
-    run(10);
-    uint8_t reason = 0;
-    assert_int_equal(answer(from, 0x0D, &reason), 'r');
-    assert_int_equal(reason, FW_REASON_STATE);
-    assert_false(C.has_next);
-    assert_int_equal(C.state, FW_STATE_MOVING);
-    for (int i = 0; i < 400 && C.state != FW_STATE_IDLE; ++i)
-        run(10);
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    for (int k = 0; k < 6; ++k)
-        assert_true(fabs(C.pose[k] - first[k]) < 1e-9);
 }
 
 /* A move committed during another is blended in: the slides do not come to rest between the two,
@@ -160,12 +135,12 @@ static void test_blended_moves(void **state)
     move_to(second, 1500);
     run(10);
     assert_int_equal(answer(from, 0x0D, NULL), 'a');
-    assert_true(C.has_next);
-    assert_true(C.blend_k0 < C.move.segments); /* blended, not back to back */
+    assert_true(now().has_next);
+    assert_true(now().blend_k0 < now().move.segments); /* blended, not back to back */
     from = F.tx_count;
     const double third[6] = {0, 0, 1.0, 0, 0, 0};
     move_to(third, 1500);
-    fw_poll(&C);
+    fw_poll(C);
     uint8_t reason = 0;
     assert_int_equal(answer(from, 0x0D, &reason), 'r');
     assert_int_equal(reason, FW_REASON_QUEUE_FULL);
@@ -174,14 +149,14 @@ static void test_blended_moves(void **state)
     for (int k = 0; k < 6; ++k)
         prev += F.steps[k];
     int moving_windows = 0, rest_between = 0, started = 0, stopped = 0;
-    for (int i = 0; i < 800 && C.state != FW_STATE_IDLE; ++i) {
+    for (int i = 0; i < 800 && fw_state_of(C) != FW_STATE_IDLE; ++i) {
         run(10);
         long now = 0, diff = 0;
         for (int k = 0; k < 6; ++k)
             now += F.steps[k];
         diff = labs(now - prev);
         int32_t steps[6];
-        stepgen_positions(&C.sg, steps);
+        stepgen_positions(fw_stepgen_of(C), steps);
         (void)steps;
         if (diff > 0) {
             if (stopped)
@@ -193,11 +168,11 @@ static void test_blended_moves(void **state)
         }
         prev = now;
     }
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
     assert_false(rest_between);
     assert_true(moving_windows > 100);
     tse_ik_result r;
-    assert_int_equal(tse_ik(&C.geom, second, NULL, &r), TSE_OK);
+    assert_int_equal(tse_ik(fw_geometry_of(C), second, NULL, &r), TSE_OK);
     for (int k = 0; k < 6; ++k)
         assert_int_equal(F.steps[k], lround(r.q[k] * 1280000.0));
 }
@@ -217,17 +192,17 @@ static void test_staging_is_atomic(void **state)
     const int32_t m[3] = {s, 0, 1000};
     unsigned from = F.tx_count;
     send(PM_MOVE_COMMIT, m);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, 0x0D, &reason), 'r');
     assert_int_equal(reason, FW_REASON_INCOMPLETE);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
 
     /* Parts of a different sequence do not complete it. */
     const int32_t c_other[3] = {(uint8_t)(s + 1), 0, 100000};
     send(PM_POSE_C, c_other);
     from = F.tx_count;
     send(PM_MOVE_COMMIT, m);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, 0x0D, &reason), 'r');
     assert_int_equal(reason, FW_REASON_INCOMPLETE);
 
@@ -243,33 +218,33 @@ static void test_staging_is_atomic(void **state)
     const int32_t late[3] = {(uint8_t)(s - 1), 0, 0};
     from = F.tx_count;
     send(PM_POSE_A, late);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, 0x0A, &reason), 0);
     const int32_t m2[3] = {s, 0, 1000};
     from = F.tx_count;
     send(PM_MOVE_COMMIT, m2);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, 0x0D, &reason), 'r');
     assert_int_equal(reason, FW_REASON_INCOMPLETE);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
     send(PM_POSE_C, c2);
     send(PM_POSE_A, a2);
     send(PM_POSE_B, b2);
     from = F.tx_count;
     send(PM_MOVE_COMMIT, m2);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, 0x0D, NULL), 'a');
-    assert_int_equal(C.state, FW_STATE_MOVING);
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
     for (int k = 0; k < 6; ++k)
-        assert_true(fabs(C.move.to[k] - target[k]) < 1e-12);
+        assert_true(fabs(now().move.to[k] - target[k]) < 1e-12);
 
     /* The same sequence again is stale. */
-    for (int i = 0; i < 50 && C.state != FW_STATE_IDLE; ++i)
+    for (int i = 0; i < 50 && fw_state_of(C) != FW_STATE_IDLE; ++i)
         run(100);
     stage(s, target);
     from = F.tx_count;
     send(PM_MOVE_COMMIT, m2);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, 0x0D, &reason), 'r');
     assert_int_equal(reason, FW_REASON_STALE);
 }
@@ -284,20 +259,20 @@ static void test_stray_part_ahead_does_not_block_the_host(void **state)
     reach(FW_STATE_IDLE);
     const double target[6] = {0.05, 0.02, 1.05, 0, 0, 0.1};
     for (int round = 0; round < 3; ++round) {
-        const uint8_t host_seq = (uint8_t)(C.last_seq + 1u);
+        const uint8_t host_seq = (uint8_t)(now().last_seq + 1u);
         const int32_t stray[3] = {(uint8_t)(host_seq + 1u + (unsigned)round * 60u), 1000, 2000};
         send(PM_POSE_B, stray);
-        fw_poll(&C);
+        fw_poll(C);
         stage(host_seq, round % 2 ? NEAR : target);
         const int32_t m[3] = {host_seq, 0, 500};
         const unsigned from = F.tx_count;
         send(PM_MOVE_COMMIT, m);
-        fw_poll(&C);
+        fw_poll(C);
         assert_int_equal(answer(from, 0x0D, NULL), 'a');
-        for (int i = 0; i < 50 && C.state != FW_STATE_IDLE; ++i)
+        for (int i = 0; i < 50 && fw_state_of(C) != FW_STATE_IDLE; ++i)
             run(100);
-        assert_int_equal(C.state, FW_STATE_IDLE);
-        assert_int_equal(C.last_seq, host_seq);
+        assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+        assert_int_equal(now().last_seq, host_seq);
     }
 }
 
@@ -316,7 +291,7 @@ static void test_unreachable_pose_rejected_without_motion(void **state)
     assert_int_equal(r->data[2], FW_REASON_KINEMATICS);
     assert_true(r->data[3] >= 1 && r->data[3] <= 3);
     assert_int_not_equal(r->data[4], TSE_OK);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
     assert_true(F.pulses == pulses);
 }
 
@@ -325,8 +300,8 @@ static void test_malformed_frames(void **state)
 {
     (void)state;
     reach(FW_STATE_IDLE);
-    const fw_state st = C.state;
-    const fw_param_set params = C.params;
+    const fw_state st = fw_state_of(C);
+    const fw_param_set params = (*fw_params_of(C));
     struct {
         uint16_t id;
         uint8_t len;
@@ -342,13 +317,13 @@ static void test_malformed_frames(void **state)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         const unsigned from = F.tx_count;
         fake_send(&F, cases[i].id, cases[i].len, cases[i].data);
-        fw_poll(&C);
+        fw_poll(C);
         uint8_t reason = 0;
         assert_int_equal(answer(from, (uint8_t)(cases[i].id >> 4), &reason), 'r');
         assert_int_equal(reason, cases[i].reason);
-        assert_int_equal(C.state, st);
-        assert_memory_equal(&C.params, &params, sizeof params);
-        assert_int_equal(C.stage_have, 0);
+        assert_int_equal(fw_state_of(C), st);
+        assert_memory_equal(fw_params_of(C), &params, sizeof params);
+        assert_int_equal(now().stage_have, 0);
     }
     /* Other nodes' frames and the controllers' own traffic are ignored. */
     const unsigned from = F.tx_count;
@@ -356,28 +331,28 @@ static void test_malformed_frames(void **state)
     fake_send(&F, 0x072, 1, d);           /* DISABLE for node 2 */
     fake_send(&F, 0x201, 8, (uint8_t[8]){0}); /* a STATUS frame */
     fake_send(&F, 0x060, 1, d);           /* ENABLE broadcast: only stops are broadcast */
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(F.tx_count, from + 0u);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
 }
 
 static void test_watchdog(void **state)
 {
     (void)state;
     reach(FW_STATE_IDLE);
-    fake_run(&F, &C, 450);
-    assert_int_equal(C.state, FW_STATE_IDLE); /* 500 ms not yet passed */
-    fake_run(&F, &C, 100);
-    assert_int_equal(C.state, FW_STATE_FAULT);
-    assert_int_equal(C.fault, FW_FAULT_WATCHDOG);
+    fake_run(&F, C, 450);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE); /* 500 ms not yet passed */
+    fake_run(&F, C, 100);
+    assert_int_equal(fw_state_of(C), FW_STATE_FAULT);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_WATCHDOG);
     assert_false(F.enabled);
     /* Latched until cleared; clearing leaves the drives off. */
     run(200);
-    assert_int_equal(C.state, FW_STATE_FAULT);
+    assert_int_equal(fw_state_of(C), FW_STATE_FAULT);
     cmd(PM_CLEAR_FAULT);
     run(10);
-    assert_int_equal(C.state, FW_STATE_DISABLED);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
+    assert_int_equal(fw_state_of(C), FW_STATE_DISABLED);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
 }
 
 /* Silence during a move: a controlled stop along the path, then the fault. */
@@ -386,13 +361,13 @@ static void test_watchdog_during_move_stops_smoothly(void **state)
     (void)state;
     reach(FW_STATE_MOVING);
     run(1000);
-    fake_run(&F, &C, 520);
-    assert_int_equal(C.state, FW_STATE_STOPPING);
-    for (int i = 0; i < 100 && C.state == FW_STATE_STOPPING; ++i)
-        fake_run(&F, &C, 10);
-    assert_int_equal(C.state, FW_STATE_FAULT);
-    assert_int_equal(C.fault, FW_FAULT_WATCHDOG);
-    assert_true(C.homed); /* a controlled stop keeps the zero */
+    fake_run(&F, C, 520);
+    assert_int_equal(fw_state_of(C), FW_STATE_STOPPING);
+    for (int i = 0; i < 100 && fw_state_of(C) == FW_STATE_STOPPING; ++i)
+        fake_run(&F, C, 10);
+    assert_int_equal(fw_state_of(C), FW_STATE_FAULT);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_WATCHDOG);
+    assert_true(fw_homed_of(C)); /* a controlled stop keeps the zero */
 }
 
 static void test_estop_cuts_within_a_tick(void **state)
@@ -404,27 +379,27 @@ static void test_estop_cuts_within_a_tick(void **state)
     run(10);
     assert_true(F.pulses > before); /* it was moving */
     cmd(PM_ESTOP);
-    fake_run(&F, &C, 1); /* the poll at the start of this tick takes the e-stop */
+    fake_run(&F, C, 1); /* the poll at the start of this tick takes the e-stop */
     const uint64_t at = F.pulses;
-    fake_run(&F, &C, 100);
+    fake_run(&F, C, 100);
     assert_true(F.pulses == at);
-    assert_int_equal(C.state, FW_STATE_ESTOP);
+    assert_int_equal(fw_state_of(C), FW_STATE_ESTOP);
     assert_false(F.enabled);
-    assert_false(C.homed);
+    assert_false(fw_homed_of(C));
     /* The input too, and clearing needs it closed. */
     reach(FW_STATE_IDLE);
     F.estop_open = true;
-    fake_run(&F, &C, 1);
-    assert_int_equal(C.state, FW_STATE_ESTOP);
+    fake_run(&F, C, 1);
+    assert_int_equal(fw_state_of(C), FW_STATE_ESTOP);
     uint8_t reason;
     const unsigned from = F.tx_count;
     cmd(PM_CLEAR_FAULT);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, 0x09, &reason), 'r');
     F.estop_open = false;
     cmd(PM_CLEAR_FAULT);
     run(10);
-    assert_int_equal(C.state, FW_STATE_DISABLED);
+    assert_int_equal(fw_state_of(C), FW_STATE_DISABLED);
 }
 
 /* What the switches mean outside homing.  The high-end switches are hard limits.  A low (homing)
@@ -437,21 +412,21 @@ static void test_switches_outside_homing(void **state)
     reach(FW_STATE_MOVING);
     F.forced_limits = 1u << (8 + 3);
     run(10);
-    assert_int_equal(C.state, FW_STATE_STOPPING);
+    assert_int_equal(fw_state_of(C), FW_STATE_STOPPING);
     run(500);
-    assert_int_equal(C.state, FW_STATE_FAULT);
-    assert_int_equal(C.fault, FW_FAULT_LIMIT);
-    assert_false(C.homed);
+    assert_int_equal(fw_state_of(C), FW_STATE_FAULT);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_LIMIT);
+    assert_false(fw_homed_of(C));
     /* Slide 4's homing switch pressed while its count says about 0.4 m, far above its 0.2 m. */
     reach(FW_STATE_MOVING);
     assert_true(F.steps[3] > FAKE_SWITCH_AT + 640);
     F.forced_limits = 1u << 3;
     run(10);
-    assert_int_equal(C.state, FW_STATE_STOPPING);
+    assert_int_equal(fw_state_of(C), FW_STATE_STOPPING);
     run(500);
-    assert_int_equal(C.state, FW_STATE_FAULT);
-    assert_int_equal(C.fault, FW_FAULT_LIMIT);
-    assert_false(C.homed);
+    assert_int_equal(fw_state_of(C), FW_STATE_FAULT);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_LIMIT);
+    assert_false(fw_homed_of(C));
     /* Before homing a pressed homing switch is only where the slide is: no fault, no flag. */
     start();
     cmd(PM_ENABLE);
@@ -459,8 +434,8 @@ static void test_switches_outside_homing(void **state)
     F.forced_limits = 0x3F;
     unsigned from = F.tx_count;
     run(300);
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
     const hal_can_frame *st = fake_last(&F, 0x20, from);
     assert_non_null(st);
     assert_int_equal(st->data[2] & 8u, 0);
@@ -471,21 +446,7 @@ static void test_switches_outside_homing(void **state)
     st = fake_last(&F, 0x20, from);
     assert_non_null(st);
     assert_int_equal(st->data[2] & 8u, 8u);
-    assert_int_equal(C.fault, FW_FAULT_LIMIT);
-}
-
-/* A parameter change over the bus.  Returns 'a' or 'r' (with the reason and the field named). */
-static char set_param(uint16_t id, int32_t value, uint8_t *reason, uint8_t *field)
-{
-    const unsigned from = F.tx_count;
-    const int32_t v[2] = {id, value};
-    send(PM_PARAM_SET, v);
-    fw_poll(&C);
-    const char got = answer(from, 0x10, reason);
-    const hal_can_frame *r = fake_last(&F, 0x03, from);
-    if (got == 'r' && field)
-        *field = r->data[5];
-    return got;
+    assert_int_equal(fw_fault_of(C), FW_FAULT_LIMIT);
 }
 
 /* The cross-check's tolerance is 0.5 mm, 640 steps at 1.28M steps/m.  Switches placed 0.3 mm
@@ -497,18 +458,28 @@ static void test_switch_tolerance(void **state)
 {
     (void)state;
     start();
-    const long at_home = lround(C.geom.home_s * 1280000.0); /* steps at home */
-    const int32_t home_um = (int32_t)lround(C.geom.home_s * 1e6);
+    const long at_home = lround(fw_geometry_of(C)->home_s * 1280000.0); /* steps at home */
+    const int32_t home_um = (int32_t)lround(fw_geometry_of(C)->home_s * 1e6);
     const int32_t sw_um[6] = {home_um - 300, home_um - 700, home_um + 300, home_um + 700, home_um, home_um};
     /* The switches written whole, past the wire's one-at-a-time PARAM_SET: the check refuses a
      * set with some switches near home and the others at 0.2 m (homing's final move from there
-     * leaves the workspace), and every set on the way to this one is such a set. */
+     * leaves the workspace), and every set on the way to this one is such a set.  So the set is
+     * stored, and the controller started again finds it (as after a PARAM_SAVE). */
+    fw_param_set ps = *fw_params_of(C);
+    for (int k = 0; k < 6; ++k)
+        ps.v[FP_HOME_SW_1 + k] = sw_um[k];
+    assert_int_equal(fw_params_judge(&ps).rule, FW_RULE_NONE);
+    fw_hal hal;
+    fake_hal_init(&F, &hal);
+    F.storage_len = (int)fw_params_serialize(&ps, F.storage, sizeof F.storage);
+    assert_true(F.storage_len > 0);
     for (int k = 0; k < 6; ++k) {
-        C.params.v[FP_HOME_SW_1 + k] = sw_um[k];
         F.switch_at[k] = (int32_t)((int64_t)sw_um[k] * 128 / 100); /* pressed at and below */
         F.steps[k] = F.switch_at[k] + 3000;
     }
-    assert_int_equal(fw_params_judge(&C.params).rule, FW_RULE_NONE);
+    restart(&hal);
+    for (int k = 0; k < 6; ++k)
+        assert_int_equal(fw_params_of(C)->v[FP_HOME_SW_1 + k], sw_um[k]);
     for (int round = 0; round < 2; ++round) {
         if (round == 1) {
             /* Again from a fresh homing, for slide 4 (the fault of slide 2 ended the first). */
@@ -521,7 +492,7 @@ static void test_switch_tolerance(void **state)
         for (int k = 0; k < 6; ++k)
             assert_int_equal(F.steps[k], at_home);
         run(100);
-        assert_int_equal(C.state, FW_STATE_IDLE);
+        assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
         if (round == 0) {
             /* Slide 1 (0.3 mm above its switch) now reads pressed: within the tolerance. */
             F.switch_at[0] += 1280;
@@ -530,8 +501,8 @@ static void test_switch_tolerance(void **state)
             F.switch_at[2] -= 1280;
             assert_true(F.steps[2] > F.switch_at[2]);
             run(100);
-            assert_int_equal(C.state, FW_STATE_IDLE);
-            assert_true(C.homed);
+            assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+            assert_true(fw_homed_of(C));
             /* Slide 2 (0.7 mm above) reads pressed: beyond it. */
             F.switch_at[1] += 1280;
         } else {
@@ -539,9 +510,9 @@ static void test_switch_tolerance(void **state)
             F.switch_at[3] -= 1280;
         }
         run(10);
-        assert_int_equal(C.state, FW_STATE_FAULT);
-        assert_int_equal(C.fault, FW_FAULT_LIMIT);
-        assert_false(C.homed);
+        assert_int_equal(fw_state_of(C), FW_STATE_FAULT);
+        assert_int_equal(fw_fault_of(C), FW_FAULT_LIMIT);
+        assert_false(fw_homed_of(C));
     }
 }
 
@@ -556,7 +527,7 @@ static void test_homing_from_below(void **state)
         F.steps[k] = FAKE_SWITCH_AT - 20000 - 1000 * k; /* 16 to 20 mm below */
     home();
     for (int k = 0; k < 6; ++k)
-        assert_int_equal(F.steps[k], lround(C.geom.home_s * 1280000.0));
+        assert_int_equal(F.steps[k], lround(fw_geometry_of(C)->home_s * 1280000.0));
 }
 
 /* Each slide's own switch position: slide 6's switch 5 cm higher than the others. */
@@ -569,7 +540,7 @@ static void test_homing_per_slide_switch(void **state)
     F.steps[5] = 330000;
     home();
     for (int k = 0; k < 6; ++k)
-        assert_int_equal(F.steps[k], lround(C.geom.home_s * 1280000.0));
+        assert_int_equal(F.steps[k], lround(fw_geometry_of(C)->home_s * 1280000.0));
 }
 
 static void test_bus_off(void **state)
@@ -578,7 +549,7 @@ static void test_bus_off(void **state)
     reach(FW_STATE_IDLE);
     F.can_state.bus_off = true;
     run(10);
-    assert_int_equal(C.fault, FW_FAULT_BUS_OFF);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_BUS_OFF);
 }
 
 /* A bus-off that automatic recovery ended before the controller looked: only its count moved,
@@ -588,12 +559,12 @@ static void test_bus_off_recovered_between_looks(void **state)
     (void)state;
     reach(FW_STATE_IDLE);
     run(10);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
     F.can_state.bus_off = false;
     F.can_state.bus_off_events = 1;
     run(10);
-    assert_int_equal(C.state, FW_STATE_FAULT);
-    assert_int_equal(C.fault, FW_FAULT_BUS_OFF);
+    assert_int_equal(fw_state_of(C), FW_STATE_FAULT);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_BUS_OFF);
 }
 
 /* The drivers' timing: programmed through hal_stepper.timing at start-up and on every accepted
@@ -607,14 +578,14 @@ static void test_driver_timing(void **state)
     assert_int_equal(F.timing_calls, 1);
     assert_int_equal(F.pulse_ns, (uint32_t)fw_param_table[FP_STEP_PULSE_NS].def);
     assert_int_equal(F.dir_setup_ns, (uint32_t)fw_param_table[FP_DIR_SETUP_NS].def);
-    assert_int_equal(C.sg.cfg.dir_setup_ticks, 2); /* 5 us is half a tick: one, plus one of margin */
+    assert_int_equal(fw_stepgen_of(C)->cfg.dir_setup_ticks, 2); /* 5 us is half a tick: one, plus one of margin */
     const struct {
         int32_t ns;
         uint32_t ticks;
     } setups[] = {{25000, 4}, {20000, 3}, {20001, 4}, {1, 2}, {0, 1}};
     for (size_t i = 0; i < sizeof setups / sizeof setups[0]; ++i) {
         assert_int_equal(set_param(FP_DIR_SETUP_NS, setups[i].ns, NULL, NULL), 'a');
-        assert_int_equal(C.sg.cfg.dir_setup_ticks, setups[i].ticks);
+        assert_int_equal(fw_stepgen_of(C)->cfg.dir_setup_ticks, setups[i].ticks);
         assert_int_equal(F.dir_setup_ns, (uint32_t)setups[i].ns);
     }
     assert_int_equal(F.timing_calls, 6);
@@ -623,7 +594,7 @@ static void test_driver_timing(void **state)
     assert_int_equal(set_param(FP_DIR_SETUP_NS, 1000000, &reason, &field), 'r');
     assert_int_equal(reason, FW_REASON_PARAM_SET);
     assert_int_equal(field, FP_DIR_SETUP_NS);
-    assert_int_equal(C.params.v[FP_DIR_SETUP_NS], 0);
+    assert_int_equal(fw_params_of(C)->v[FP_DIR_SETUP_NS], 0);
     assert_int_equal(F.timing_calls, 6);
     /* step_rate_max 200k at 100 kHz: steps may come on consecutive 10 us ticks, so 5 us high and
      * 5 us low is the longest pulse. */
@@ -632,25 +603,25 @@ static void test_driver_timing(void **state)
     assert_int_equal(set_param(FP_STEP_PULSE_NS, 5001, &reason, &field), 'r');
     assert_int_equal(reason, FW_REASON_PARAM_SET);
     assert_int_equal(field, FP_STEP_PULSE_NS);
-    assert_int_equal(C.params.v[FP_STEP_PULSE_NS], 5000);
+    assert_int_equal(fw_params_of(C)->v[FP_STEP_PULSE_NS], 5000);
     assert_int_equal(F.pulse_ns, 5000);
     /* step_rate_max 50k: two ticks between steps, 20 us; the pulse must still end within its
      * own 10 us tick, so 9999 ns fits and 10000 does not. */
     assert_int_equal(set_param(FP_STEP_RATE_MAX, 50000, NULL, NULL), 'a');
-    assert_int_equal(C.sg.cfg.min_step_interval, 2);
+    assert_int_equal(fw_stepgen_of(C)->cfg.min_step_interval, 2);
     assert_int_equal(set_param(FP_STEP_PULSE_NS, 9999, NULL, NULL), 'a');
     assert_int_equal(set_param(FP_STEP_PULSE_NS, 10000, &reason, &field), 'r');
     assert_int_equal(reason, FW_REASON_PARAM_SET);
     /* Nor may the step rate come back up under the long pulse. */
     assert_int_equal(set_param(FP_STEP_RATE_MAX, 200000, &reason, &field), 'r');
     assert_int_equal(field, FP_STEP_RATE_MAX);
-    assert_int_equal(C.sg.cfg.min_step_interval, 2);
+    assert_int_equal(fw_stepgen_of(C)->cfg.min_step_interval, 2);
     /* The CAN rate: one of four, stored only. */
     assert_int_equal(set_param(FP_CAN_KBPS, 300, &reason, &field), 'r');
     assert_int_equal(reason, FW_REASON_PARAM_RANGE);
     assert_int_equal(field, FP_CAN_KBPS);
     assert_int_equal(set_param(FP_CAN_KBPS, 250, NULL, NULL), 'a');
-    assert_int_equal(C.params.v[FP_CAN_KBPS], 250);
+    assert_int_equal(fw_params_of(C)->v[FP_CAN_KBPS], 250);
 }
 
 /* A change of a switch position or of the step size drops the zero: it was set against the old
@@ -664,12 +635,12 @@ static void test_switch_change_needs_homing(void **state)
         reach(FW_STATE_IDLE);
         cmd(PM_DISABLE);
         run(10);
-        assert_int_equal(C.state, FW_STATE_DISABLED);
-        assert_true(C.homed);
+        assert_int_equal(fw_state_of(C), FW_STATE_DISABLED);
+        assert_true(fw_homed_of(C));
         assert_int_equal(set_param(FP_WATCHDOG_MS, 400, NULL, NULL), 'a');
-        assert_true(C.homed);
+        assert_true(fw_homed_of(C));
         assert_int_equal(set_param(ids[i], values[i], NULL, NULL), 'a');
-        assert_false(C.homed);
+        assert_false(fw_homed_of(C));
     }
 }
 
@@ -684,50 +655,50 @@ static void estop_interrupt(void *arg, fake_hook_point at)
         return;
     isr_armed = false;
     fw_estop_isr(arg);
-    isr_head = atomic_load(&C.sg.head);
+    isr_head = atomic_load(&fw_stepgen_of(C)->head);
 }
 
 static void arm_interrupt(fake_hook_point at)
 {
     F.hook = estop_interrupt;
-    F.hook_arg = &C;
+    F.hook_arg = C;
     isr_at = at;
     isr_armed = true;
 }
 
 /* The interrupt inside a control tick, after it began and before it queues its setpoint (while
- * it reads the bus state, or the clock): the setpoint the tick still pushes is never stepped, the
- * drives are off at once, and the next poll (or tick) completes the e-stop. */
+ * it reads the bus state; the tick reads no clock since the watchdog judges by the thread's reads
+ * of the bus), three times over: the setpoint the tick still pushes is never stepped, the drives
+ * are off at once, and the next control tick (never the thread) completes the e-stop. */
 static void test_estop_interrupt_mid_tick(void **state)
 {
     (void)state;
-    const fake_hook_point points[] = {FAKE_AT_CAN_STATE, FAKE_AT_CLOCK, FAKE_AT_CAN_STATE};
+    const fake_hook_point points[] = {FAKE_AT_CAN_STATE, FAKE_AT_CAN_STATE, FAKE_AT_CAN_STATE};
     for (int i = 0; i < 3; ++i) {
         reach(FW_STATE_MOVING);
         run(500);
         heartbeat();
-        fw_poll(&C); /* the poll before the tick, as fake_run does it */
+        fw_poll(C); /* the poll before the tick, as fake_run does it */
         const uint64_t pulses = F.pulses;
         assert_true(F.enabled);
         arm_interrupt(points[i]);
-        fw_control_tick(&C);
+        fw_control_tick(C);
         assert_false(isr_armed);                          /* it came */
         assert_false(F.enabled);                          /* drives off in the interrupt */
-        assert_true(atomic_load(&C.sg.head) > isr_head); /* and the tick pushed after it */
-        assert_int_equal(C.state, FW_STATE_MOVING);       /* not completed yet */
+        assert_true(atomic_load(&fw_stepgen_of(C)->head) > isr_head); /* and the tick pushed after it */
+        assert_int_equal(fw_state_of(C), FW_STATE_MOVING);       /* not completed yet */
         for (int t = 0; t < 300; ++t)
-            fw_step_tick(&C);
+            fw_step_tick(C);
         assert_true(F.pulses == pulses);
-        if (i < 2)
-            fw_poll(&C);
-        else
-            fw_control_tick(&C); /* the tick completes it too */
-        assert_int_equal(C.state, FW_STATE_ESTOP);
-        assert_int_equal(C.fault, FW_FAULT_ESTOP);
-        assert_true(stepgen_idle(&C.sg));
-        assert_false(C.homed);
+        fw_poll(C); /* the thread leaves the tick's state alone */
+        assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
+        fw_control_tick(C); /* the next tick completes it */
+        assert_int_equal(fw_state_of(C), FW_STATE_ESTOP);
+        assert_int_equal(fw_fault_of(C), FW_FAULT_ESTOP);
+        assert_true(stepgen_idle(fw_stepgen_of(C)));
+        assert_false(fw_homed_of(C));
         assert_false(F.enabled);
-        fake_run(&F, &C, 100);
+        fake_run(&F, C, 100);
         assert_true(F.pulses == pulses);
         F.hook = NULL;
     }
@@ -740,20 +711,20 @@ static void test_estop_interrupt_mid_segment(void **state)
     reach(FW_STATE_MOVING);
     run(500);
     heartbeat();
-    fw_poll(&C);
-    fw_control_tick(&C);
+    fw_poll(C);
+    fw_control_tick(C);
     uint64_t pulses = F.pulses;
     for (int t = 0; t < 50; ++t)
-        fw_step_tick(&C);
-    assert_true(C.sg.running);
+        fw_step_tick(C);
+    assert_true(fw_stepgen_of(C)->running);
     assert_true(F.pulses > pulses); /* it was stepping */
     pulses = F.pulses;
-    fw_estop_isr(&C);
+    fw_estop_isr(C);
     for (int t = 0; t < 500; ++t)
-        fw_step_tick(&C);
+        fw_step_tick(C);
     assert_true(F.pulses == pulses);
-    fw_control_tick(&C);
-    assert_int_equal(C.state, FW_STATE_ESTOP);
+    fw_control_tick(C);
+    assert_int_equal(fw_state_of(C), FW_STATE_ESTOP);
     assert_false(F.enabled);
 }
 
@@ -766,13 +737,13 @@ static void test_estop_interrupt_mid_poll(void **state)
     const unsigned from = F.tx_count;
     cmd(PM_ENABLE);
     arm_interrupt(FAKE_AT_RECEIVE);
-    fw_poll(&C);
+    fw_poll(C);
     F.hook = NULL;
     assert_false(isr_armed);
     uint8_t reason = 0;
     assert_int_equal(answer(from, 0x06, &reason), 'r');
     assert_int_equal(reason, FW_REASON_STATE);
-    assert_int_equal(C.state, FW_STATE_ESTOP);
+    assert_int_equal(fw_state_of(C), FW_STATE_ESTOP);
     assert_false(F.enabled);
 }
 
@@ -784,12 +755,12 @@ static void test_estop_interrupt_during_enable(void **state)
     reach(FW_STATE_DISABLED);
     cmd(PM_ENABLE);
     arm_interrupt(FAKE_AT_ENABLE);
-    fw_poll(&C);
+    fw_poll(C);
     F.hook = NULL;
     assert_false(isr_armed);
     assert_false(F.enabled);
-    fw_control_tick(&C);
-    assert_int_equal(C.state, FW_STATE_ESTOP);
+    fw_control_tick(C);
+    assert_int_equal(fw_state_of(C), FW_STATE_ESTOP);
     assert_false(F.enabled);
 }
 
@@ -800,7 +771,7 @@ static void test_params_over_can(void **state)
     unsigned from = F.tx_count;
     const int32_t set[2] = {FP_SLIDE_VMAX, 150000};
     send(PM_PARAM_SET, set);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, 0x10, NULL), 'a');
     const hal_can_frame *v = fake_last(&F, 0x27, from);
     assert_non_null(v);
@@ -809,15 +780,15 @@ static void test_params_over_can(void **state)
     from = F.tx_count;
     const int32_t bad[2] = {FP_ALPHA_MIN, 1400000};
     send(PM_PARAM_SET, bad);
-    fw_poll(&C);
+    fw_poll(C);
     uint8_t reason;
     assert_int_equal(answer(from, 0x10, &reason), 'r');
     assert_int_equal(reason, FW_REASON_PARAM_SET);
-    assert_int_equal(C.params.v[FP_ALPHA_MIN], fw_param_table[FP_ALPHA_MIN].def);
+    assert_int_equal(fw_params_of(C)->v[FP_ALPHA_MIN], fw_param_table[FP_ALPHA_MIN].def);
     /* Saved, and found again at the next start. */
     const int32_t magic[1] = {0x45564153};
     send(PM_PARAM_SAVE, magic);
-    fw_poll(&C);
+    fw_poll(C);
     const uint8_t saved[256];
     memcpy((void *)saved, F.storage, sizeof saved);
     const int len = F.storage_len;
@@ -825,14 +796,13 @@ static void test_params_over_can(void **state)
     fake_hal_init(&F, &hal);
     memcpy(F.storage, saved, sizeof saved);
     F.storage_len = len;
-    const fw_config cfg = {1, 1000, 100000, false};
-    assert_int_equal(fw_init(&C, &hal, &cfg), 0);
-    assert_int_equal(C.params.v[FP_SLIDE_VMAX], 150000);
+    restart(&hal);
+    assert_int_equal(fw_params_of(C)->v[FP_SLIDE_VMAX], 150000);
     /* A failing store is reported. */
     F.storage_fails = true;
     from = F.tx_count;
     send(PM_PARAM_SAVE, magic);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, 0x11, &reason), 'r');
     assert_int_equal(reason, FW_REASON_STORAGE);
 }
@@ -856,7 +826,6 @@ int main(void)
         cmocka_unit_test(test_state_table),
         cmocka_unit_test(test_move_lands_on_target_steps),
         cmocka_unit_test(test_blended_moves),
-        cmocka_unit_test(test_no_blend),
         cmocka_unit_test(test_staging_is_atomic),
         cmocka_unit_test(test_stray_part_ahead_does_not_block_the_host),
         cmocka_unit_test(test_unreachable_pose_rejected_without_motion),

@@ -121,14 +121,14 @@ static void test_too_long_rejected(void **state)
     reach(FW_STATE_IDLE);
     double to[6];
     for (int k = 0; k < 6; ++k)
-        to[k] = C.geom.home_pose[k];
+        to[k] = fw_geometry_of(C)->home_pose[k];
     to[0] = 4.0;
     to[1] = -2.0;
     const unsigned from = F.tx_count;
     const uint8_t s = seq++;
     stage(s, to);
     send(PM_MOVE_COMMIT, (const int32_t[]){s, 1, 1});
-    fw_poll(&C);
+    fw_poll(C);
     const proto_message r = reject_of(from, proto_table[PM_MOVE_COMMIT].function);
     assert_int_equal(r.v[1], s);
     assert_int_equal(r.v[2], FW_REASON_TOO_LONG);
@@ -136,7 +136,7 @@ static void test_too_long_rejected(void **state)
     assert_int_equal(r.v[4], 0);
     assert_int_equal(r.v[5], 0);
     assert_int_equal(r.v[6], FW_MOVE_MAX_S);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
 }
 
 int main(void)

@@ -31,7 +31,7 @@ static proto_message reject_raw(uint16_t id, uint8_t len, const uint8_t *data)
 {
     const unsigned from = F.tx_count;
     fake_send(&F, id, len, data);
-    fw_poll(&C);
+    fw_poll(C);
     return reject_of(from, (uint8_t)(id >> 4));
 }
 
@@ -61,15 +61,6 @@ static void range_reject_carries_the_seq(void **state)
     assert_int_equal(r.v[1], 0);
 }
 
-static char set_param(int id, int32_t value, uint8_t *reason)
-{
-    const unsigned from = F.tx_count;
-    const int32_t v[2] = {id, value};
-    send(PM_PARAM_SET, v);
-    fw_poll(&C);
-    return answer(from, proto_table[PM_PARAM_SET].function, reason);
-}
-
 static void step_rate_leaving_no_step_is_refused(void **state)
 {
     (void)state;
@@ -78,17 +69,17 @@ static void step_rate_leaving_no_step_is_refused(void **state)
      * a slide keeps its DIR quiet for 2 (5 us of set-up: one tick, plus one).  At 1000 steps/s a
      * slide steps at most every 100 ticks: no step fits in the 98 left, the slide could not move. */
     uint8_t reason = 0;
-    assert_int_equal(set_param(FP_STEP_RATE_MAX, 1000, &reason), 'r');
+    assert_int_equal(set_param(FP_STEP_RATE_MAX, 1000, &reason, NULL), 'r');
     assert_int_equal(reason, FW_REASON_PARAM_SET);
-    assert_int_equal(C.params.v[FP_STEP_RATE_MAX], fw_param_table[FP_STEP_RATE_MAX].def);
+    assert_int_equal(fw_params_of(C)->v[FP_STEP_RATE_MAX], fw_param_table[FP_STEP_RATE_MAX].def);
     /* At 1100 steps/s, every 91 ticks: one step fits. */
-    assert_int_equal(set_param(FP_STEP_RATE_MAX, 1100, &reason), 'a');
-    assert_true(C.lim.slide_vmax > 0.0);
+    assert_int_equal(set_param(FP_STEP_RATE_MAX, 1100, &reason, NULL), 'a');
+    assert_true(fw_limits_of(C)->slide_vmax > 0.0);
     /* The limit a controller adopts is never zero, whatever set it took. */
     for (int32_t rate = 1000; rate <= 3000; rate += 7) {
-        const char a = set_param(FP_STEP_RATE_MAX, rate, &reason);
+        const char a = set_param(FP_STEP_RATE_MAX, rate, &reason, NULL);
         assert_true(a == 'a' || a == 'r');
-        assert_true(C.lim.slide_vmax > 0.0);
+        assert_true(fw_limits_of(C)->slide_vmax > 0.0);
     }
 }
 
@@ -102,28 +93,28 @@ static void homing_speed_held_to_the_slide_limit(void **state)
     /* 0.5 m/s: 640 steps a millisecond at 1.28M steps/m, where the slides may go 150 mm/s (192)
      * and the step generator can give 100 a millisecond. */
     uint8_t reason = 0;
-    assert_int_equal(set_param(FP_HOMING_SPEED, 500000, &reason), 'a');
+    assert_int_equal(set_param(FP_HOMING_SPEED, 500000, &reason, NULL), 'a');
     cmd(PM_ENABLE);
     run(5);
     cmd(PM_HOME);
-    fw_poll(&C);
-    assert_int_equal(C.state, FW_STATE_HOMING);
+    fw_poll(C);
+    assert_int_equal(fw_state_of(C), FW_STATE_HOMING);
     int32_t was[6];
     memcpy(was, F.steps, sizeof was);
     int32_t fastest = 0;
-    for (int ms = 0; ms < 20000 && C.state == FW_STATE_HOMING; ++ms) {
+    for (int ms = 0; ms < 20000 && fw_state_of(C) == FW_STATE_HOMING; ++ms) {
         if (ms % 10 == 0)
             heartbeat();
-        fake_run(&F, &C, 1);
+        fake_run(&F, C, 1);
         for (int k = 0; k < 6; ++k) {
             const int32_t d = abs(F.steps[k] - was[k]);
             fastest = d > fastest ? d : fastest;
             was[k] = F.steps[k];
         }
     }
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
-    assert_true(C.homed);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
+    assert_true(fw_homed_of(C));
     assert_true(fastest <= 100);
 }
 
@@ -135,27 +126,27 @@ static void stopped_trajectory_stays_stopped(void **state)
     home();
     /* 30 points 50 ms apart, 1 mm up each, the last flagged: 30 mm in 1.5 s. */
     double p[6];
-    memcpy(p, C.pose, sizeof p);
+    memcpy(p, now().pose, sizeof p);
     const double z0 = p[2];
     for (int i = 1; i <= 30; ++i) {
         p[2] = z0 + 0.001 * i;
         traj_row(p, 50000, i == 1, i == 30);
     }
     run(300);
-    assert_int_equal(C.state, FW_STATE_MOVING);
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
     cmd(PM_STOP);
-    fw_poll(&C);
-    assert_int_equal(C.state, FW_STATE_STOPPING);
-    const double z_stop = C.pose[2];
+    fw_poll(C);
+    assert_int_equal(fw_state_of(C), FW_STATE_STOPPING);
+    const double z_stop = now().pose[2];
     int32_t at_stop[6];
     memcpy(at_stop, F.steps, sizeof at_stop);
-    for (int i = 0; i < 200 && C.state == FW_STATE_STOPPING; ++i)
+    for (int i = 0; i < 200 && fw_state_of(C) == FW_STATE_STOPPING; ++i)
         run(10);
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
     /* At 20 mm/s of plate a stop within the limits takes well under 2 mm; the last point was
      * 24 mm further. */
-    assert_true(C.pose[2] - z_stop < 0.002);
+    assert_true(now().pose[2] - z_stop < 0.002);
     for (int k = 0; k < 6; ++k)
         assert_true(abs(F.steps[k] - at_stop[k]) < 2560); /* 2 mm of slide */
 }
@@ -166,14 +157,14 @@ static void traj_refused_for_state_keeps_its_number(void **state)
     start();
     home();
     double p[6];
-    memcpy(p, C.pose, sizeof p);
+    memcpy(p, now().pose, sizeof p);
     const double z0 = p[2];
     for (int i = 1; i <= 4; ++i) {
         p[2] = z0 + 0.0005 * i;
         traj_row(p, 50000, i == 1, i == 4);
     }
     run(50);
-    assert_int_equal(C.state, FW_STATE_MOVING);
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
     /* A point after the last one: refused, the trajectory takes no more. */
     p[2] = z0 + 0.001;
     const uint8_t s = seq++;
@@ -181,26 +172,26 @@ static void traj_refused_for_state_keeps_its_number(void **state)
     const int32_t v[4] = {s, 50000, PROTO_TRAJ_LAST, traj_id};
     unsigned from = F.tx_count;
     send(PM_TRAJ_COMMIT, v);
-    fw_poll(&C);
+    fw_poll(C);
     uint8_t reason = 0;
     assert_int_equal(answer(from, proto_table[PM_TRAJ_COMMIT].function, &reason), 'r');
     assert_int_equal(reason, FW_REASON_STATE);
-    for (int i = 0; i < 100 && C.state != FW_STATE_IDLE; ++i)
+    for (int i = 0; i < 100 && fw_state_of(C) != FW_STATE_IDLE; ++i)
         run(10);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
     /* At rest the same commit is a row of a trajectory that has ended: it never starts another. */
     from = F.tx_count;
     send(PM_TRAJ_COMMIT, v);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, proto_table[PM_TRAJ_COMMIT].function, &reason), 'r');
     assert_int_equal(reason, FW_REASON_ENDED);
     /* As the first row of a new trajectory: its staged pose and its number are still good. */
     const int32_t again[4] = {s, 50000, PROTO_TRAJ_FIRST | PROTO_TRAJ_LAST, s};
     from = F.tx_count;
     send(PM_TRAJ_COMMIT, again);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, proto_table[PM_TRAJ_COMMIT].function, &reason), 'a');
-    assert_int_equal(C.state, FW_STATE_MOVING);
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
 }
 
 static void refused_pose_part_keeps_the_staged_pose(void **state)
@@ -210,9 +201,9 @@ static void refused_pose_part_keeps_the_staged_pose(void **state)
     home();
     seq = 0;
     move_to(NEAR, 500); /* the last commit: 0 */
-    for (int i = 0; i < 300 && C.state != FW_STATE_IDLE; ++i)
+    for (int i = 0; i < 300 && fw_state_of(C) != FW_STATE_IDLE; ++i)
         run(10);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
     /* Parts A and B of a pose under 100 (newer than 0), then a part C under 200: newer than 100
      * but not than 0 (200 is 56 behind it, modulo 256), so refused; then C under 100. */
     const double p[6] = {0.04, 0.0, 1.0, 0, 0, 0};
@@ -223,7 +214,7 @@ static void refused_pose_part_keeps_the_staged_pose(void **state)
     send(PM_POSE_B, b);
     unsigned from = F.tx_count;
     send(PM_POSE_C, c200);
-    fw_poll(&C);
+    fw_poll(C);
     uint8_t reason = 0;
     assert_int_equal(answer(from, proto_table[PM_POSE_C].function, &reason), 'r');
     assert_int_equal(reason, FW_REASON_STALE);
@@ -231,7 +222,7 @@ static void refused_pose_part_keeps_the_staged_pose(void **state)
     from = F.tx_count;
     const int32_t m[3] = {100, 0, 500};
     send(PM_MOVE_COMMIT, m);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, proto_table[PM_MOVE_COMMIT].function, &reason), 'a');
 }
 

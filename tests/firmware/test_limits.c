@@ -22,19 +22,20 @@ static void test_defaults_match_controller(void **state)
 {
     (void)state;
     static fake_hal f;
-    static fw_controller c;
+    static fw_controller_mem mem;
     fw_hal hal;
     fake_hal_init(&f, &hal);
-    const fw_config cfg = {1, SEGMENT_HZ, STEP_HZ, false};
-    assert_int_equal(fw_init(&c, &hal, &cfg), 0);
+    const fw_config cfg = {1, SEGMENT_HZ, STEP_HZ, NULL, NULL};
+    const fw_controller *c = fw_init(&mem, &hal, &cfg);
+    assert_non_null(c);
 
     fw_param_set s;
     fw_params_default(&s);
     tse_geometry g;
     fw_limits lim;
     assert_int_equal(fw_limits_from_params(&s, STEP_HZ, SEGMENT_HZ, &g, &lim), 0);
-    assert_memory_equal(&g, &c.geom, sizeof g);
-    assert_memory_equal(&lim, &c.lim, sizeof lim);
+    assert_memory_equal(&g, fw_geometry_of(c), sizeof g);
+    assert_memory_equal(&lim, fw_limits_of(c), sizeof lim);
 }
 
 /* The defaults by hand: 1.28M steps/m, 200k steps/s, 150 mm/s asked.  At 100 kHz and 1 kHz a

@@ -1,6 +1,6 @@
 /* MOVE_INFO, the frame after a move's ACK: it follows the ACK at once, carries the commit's
  * sequence number, and says how the move starts (from rest, blended into the running move, or
- * after it) and what set its pace; a board-rules controller (no_blend) refuses instead. */
+ * after it) and what set its pace, on the board as on the simulator. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -51,8 +51,8 @@ static void from_rest_then_blended(void **state)
     run(10);
     info = info_since(from);
     assert_int_equal(info.v[1], FW_START_BLENDED);
-    assert_true(C.blend_k0 < C.move.segments);
-    for (int i = 0; i < 400 && C.state != FW_STATE_IDLE; ++i)
+    assert_true(now().blend_k0 < now().move.segments);
+    for (int i = 0; i < 400 && fw_state_of(C) != FW_STATE_IDLE; ++i)
         run(10);
 }
 
@@ -65,20 +65,20 @@ static void too_late_to_blend_runs_after(void **state)
     const double first[6] = {0.06, 0.0, 1.05, 0, 0, 0}, second[6] = {0.0, 0.0, 1.0, 0, 0, 0};
     move_to(first, 1000);
     run(10);
-    const uint32_t end = C.move.segments;
-    for (int i = 0; i < 5000 && C.state == FW_STATE_MOVING && C.segments_run + 5u < end; ++i) {
+    const uint32_t end = now().move.segments;
+    for (int i = 0; i < 5000 && fw_state_of(C) == FW_STATE_MOVING && now().segments_run + 5u < end; ++i) {
         heartbeat();
-        fake_run(&F, &C, 1);
+        fake_run(&F, C, 1);
     }
-    assert_int_equal(C.state, FW_STATE_MOVING);
-    assert_true(C.segments_run + 5u >= end);
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
+    assert_true(now().segments_run + 5u >= end);
     const unsigned from = F.tx_count;
     move_to(second, 1000);
-    fw_poll(&C);
+    fw_poll(C);
     const proto_message info = info_since(from);
     assert_int_equal(info.v[1], FW_START_AFTER);
-    assert_int_equal(C.blend_k0, C.move.segments);
-    for (int i = 0; i < 400 && C.state != FW_STATE_IDLE; ++i)
+    assert_int_equal(now().blend_k0, now().move.segments);
+    for (int i = 0; i < 400 && fw_state_of(C) != FW_STATE_IDLE; ++i)
         run(10);
 }
 
@@ -98,7 +98,7 @@ static void stretched_names_the_slide(void **state)
     assert_true(info.v[2] == FW_BOUND_STEP_GENERATOR || info.v[2] == FW_BOUND_SLIDE_AMAX);
     assert_in_range(info.v[3], 1, 6);
     assert_true(info.v[4] > 1000);
-    assert_true(C.move.prof.T > 0.1);
+    assert_true(now().move.prof.T > 0.1);
 }
 
 /* A speed-bound stretch (the acceleration limit raised to 20 m/s^2 out of the way) names the
@@ -112,10 +112,8 @@ static void stretched_names_the_speed_limit(void **state)
     } cases[] = {{150000, FW_BOUND_STEP_GENERATOR}, {40000, FW_BOUND_SLIDE_VMAX}};
     for (size_t i = 0; i < 2; ++i) {
         reach(FW_STATE_DISABLED);
-        fw_param_set s = C.params;
-        s.v[FP_SLIDE_AMAX] = 20000000;
-        s.v[FP_SLIDE_VMAX] = cases[i].slide_vmax;
-        assert_int_equal(fw_apply_params(&C, &s), FW_RULE_NONE);
+        assert_int_equal(set_param(FP_SLIDE_AMAX, 20000000, NULL, NULL), 'a');
+        assert_int_equal(set_param(FP_SLIDE_VMAX, cases[i].slide_vmax, NULL, NULL), 'a');
         home();
         const double far[6] = {0.0, 0.0, 1.3, 0.0, 0.0, 0.0};
         const unsigned from = F.tx_count;

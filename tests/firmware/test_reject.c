@@ -26,7 +26,7 @@ enum { REJ_FUNCTION, REJ_SEQ, REJ_REASON, REJ_SCISSOR, REJ_KIN, REJ_FIELD, REJ_W
 
 static void expect_state_reject(unsigned from, uint8_t function, fw_state st)
 {
-    fw_poll(&C);
+    fw_poll(C);
     const proto_message r = reject_of(from, function);
     assert_int_equal(r.v[REJ_REASON], FW_REASON_STATE);
     assert_int_equal(r.v[REJ_FIELD], st);
@@ -53,26 +53,32 @@ static void test_move_while_disabled(void **state)
     expect_state_reject(from, MOVE_FN, FW_STATE_DISABLED);
 }
 
-/* Refusals past the table carry the state too: a move during another on a no-blend board, a
- * trajectory point during a move, CLEAR_FAULT with the e-stop input still open. */
+/* Refusals past the table carry the state too: a trajectory point during a move, a move during a
+ * trajectory, CLEAR_FAULT with the e-stop input still open. */
 static void test_commit_and_clear_refusals(void **state)
 {
     (void)state;
     reach(FW_STATE_MOVING);
-    C.cfg.no_blend = true;
     unsigned from = F.tx_count;
-    const double other[6] = {0.06, 0.06, 1.10, 0, 0, 0.05};
-    move_to(other, 1500);
-    expect_state_reject(from, MOVE_FN, FW_STATE_MOVING);
-
-    from = F.tx_count;
     traj_row(NEAR, 50000, true, false);
     expect_state_reject(from, TRAJ_FN, FW_STATE_MOVING);
 
     reach(FW_STATE_IDLE);
+    const fw_inspection at = now();
+    from = F.tx_count;
+    traj_row(at.pose, 50000, true, false); /* a trajectory opens, held at rest while it fills */
+    run(1);
+    assert_int_equal(answer(from, TRAJ_FN, NULL), 'a');
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
+    from = F.tx_count;
+    const double other[6] = {0.06, 0.06, 1.10, 0, 0, 0.05};
+    move_to(other, 1500);
+    expect_state_reject(from, MOVE_FN, FW_STATE_MOVING);
+
+    reach(FW_STATE_IDLE);
     F.estop_open = true;
-    fake_run(&F, &C, 1);
-    assert_int_equal(C.state, FW_STATE_ESTOP);
+    fake_run(&F, C, 1);
+    assert_int_equal(fw_state_of(C), FW_STATE_ESTOP);
     from = F.tx_count;
     cmd(PM_CLEAR_FAULT);
     expect_state_reject(from, proto_table[PM_CLEAR_FAULT].function, FW_STATE_ESTOP);
@@ -83,8 +89,8 @@ static void test_commit_and_clear_refusals(void **state)
 static int fastest_slide(const double p[6], double *dq)
 {
     tse_ik_result a, b;
-    assert_int_equal(tse_ik(&C.geom, C.pose, NULL, &a), TSE_OK);
-    assert_int_equal(tse_ik(&C.geom, p, a.q, &b), TSE_OK);
+    assert_int_equal(tse_ik(fw_geometry_of(C), now().pose, NULL, &a), TSE_OK);
+    assert_int_equal(tse_ik(fw_geometry_of(C), p, a.q, &b), TSE_OK);
     int best = 0;
     for (int k = 1; k < 6; ++k)
         if (fabs(b.q[k] - a.q[k]) > fabs(b.q[best] - a.q[best]))
@@ -101,27 +107,18 @@ static int fastest_slide(const double p[6], double *dq)
 static proto_message refused_point(double d, int *slide, double *dq)
 {
     double p[6];
-    memcpy(p, C.pose, sizeof p);
+    memcpy(p, now().pose, sizeof p);
     p[1] += d;
     p[2] += d;
     *slide = fastest_slide(p, dq);
     const uint64_t pulses = F.pulses;
     const unsigned from = F.tx_count;
     traj_row(p, 50000, true, false);
-    fw_poll(&C);
+    fw_poll(C);
     run(20);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
     assert_true(F.pulses == pulses);
     return reject_of(from, TRAJ_FN);
-}
-
-static void set_param(int id, int32_t value)
-{
-    const unsigned from = F.tx_count;
-    const int32_t set[2] = {id, value};
-    send(PM_PARAM_SET, set);
-    fw_poll(&C);
-    assert_int_equal(answer(from, proto_table[PM_PARAM_SET].function, NULL), 'a');
 }
 
 /* Too fast for the slide speed: with the acceleration limit at its 20 m/s^2 maximum, jumping to
@@ -131,8 +128,8 @@ static void set_param(int id, int32_t value)
 static void timing_speed(int32_t slide_vmax_um, double vmax, fw_slide_limit limit)
 {
     start();
-    set_param(FP_SLIDE_AMAX, 20000000);
-    set_param(FP_SLIDE_VMAX, slide_vmax_um);
+    assert_int_equal(set_param(FP_SLIDE_AMAX, 20000000, NULL, NULL), 'a');
+    assert_int_equal(set_param(FP_SLIDE_VMAX, slide_vmax_um, NULL, NULL), 'a');
     home();
     int k;
     double dq;
@@ -188,11 +185,11 @@ static void test_timing_capped(void **state)
     (void)state;
     reach(FW_STATE_IDLE);
     double p[6];
-    memcpy(p, C.pose, sizeof p);
+    memcpy(p, now().pose, sizeof p);
     p[2] += 0.02;
     const unsigned from = F.tx_count;
     traj_row(p, 1000, true, false);
-    fw_poll(&C);
+    fw_poll(C);
     const proto_message r = reject_of(from, TRAJ_FN);
     assert_int_equal(r.v[REJ_REASON], FW_REASON_TIMING);
     assert_int_equal(r.v[REJ_WHERE], 65535);
@@ -227,14 +224,14 @@ static void test_param_set_rules(void **state)
         {-1, 0, FP_DIR_SETUP_NS, 990000, FW_REASON_PARAM_SET, FW_RULE_DIR_SETUP_ROOM},
     };
     reach(FW_STATE_DISABLED);
-    const fw_param_set before = C.params;
+    const fw_param_set before = (*fw_params_of(C));
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         if (cases[i].pre_id >= 0)
-            set_param(cases[i].pre_id, cases[i].pre_value);
+            assert_int_equal(set_param(cases[i].pre_id, cases[i].pre_value, NULL, NULL), 'a');
         const unsigned from = F.tx_count;
         const int32_t set[2] = {cases[i].id, cases[i].value};
         send(PM_PARAM_SET, set);
-        fw_poll(&C);
+        fw_poll(C);
         const proto_message r = reject_of(from, proto_table[PM_PARAM_SET].function);
         if (r.v[REJ_REASON] != (int32_t)cases[i].reason || r.v[REJ_WHERE] != (int32_t)cases[i].rule)
             fail_msg("case %zu: reason %d rule %d, by hand %d and %d", i, r.v[REJ_REASON], r.v[REJ_WHERE],
@@ -243,28 +240,28 @@ static void test_param_set_rules(void **state)
         assert_int_equal(r.v[REJ_SCISSOR], 0);
         assert_int_equal(r.v[REJ_KIN], 0);
         if (cases[i].pre_id >= 0)
-            set_param(cases[i].pre_id, before.v[cases[i].pre_id]);
-        assert_memory_equal(&C.params, &before, sizeof before);
+            assert_int_equal(set_param(cases[i].pre_id, before.v[cases[i].pre_id], NULL, NULL), 'a');
+        assert_memory_equal(fw_params_of(C), &before, sizeof before);
     }
     /* The pulse rule broken by another parameter: at step_rate_max 50k/s a step comes at most every
      * 2 ticks (20 us), and a 6 us pulse leaves 14 us low; back at 200k/s, every tick (10 us), 4 us
      * low: refused, naming step_rate_max and the pulse's rule. */
-    set_param(FP_STEP_RATE_MAX, 50000);
-    set_param(FP_STEP_PULSE_NS, 6000);
+    assert_int_equal(set_param(FP_STEP_RATE_MAX, 50000, NULL, NULL), 'a');
+    assert_int_equal(set_param(FP_STEP_PULSE_NS, 6000, NULL, NULL), 'a');
     const unsigned from = F.tx_count;
     const int32_t set[2] = {FP_STEP_RATE_MAX, 200000};
     send(PM_PARAM_SET, set);
-    fw_poll(&C);
+    fw_poll(C);
     const proto_message r = reject_of(from, proto_table[PM_PARAM_SET].function);
     assert_int_equal(r.v[REJ_REASON], FW_REASON_PARAM_SET);
     assert_int_equal(r.v[REJ_FIELD], FP_STEP_RATE_MAX);
     assert_int_equal(r.v[REJ_WHERE], FW_RULE_PULSE_LOW);
-    assert_int_equal(C.params.v[FP_STEP_RATE_MAX], 50000);
+    assert_int_equal(fw_params_of(C)->v[FP_STEP_RATE_MAX], 50000);
     /* The longest of each that fits: a 5 us pulse leaves 5 us low; 0.98 ms of set-up is 98 + 1 ticks,
      * one left for a step. */
-    set_param(FP_STEP_PULSE_NS, 5000);
-    set_param(FP_STEP_RATE_MAX, 200000);
-    set_param(FP_DIR_SETUP_NS, 980000);
+    assert_int_equal(set_param(FP_STEP_PULSE_NS, 5000, NULL, NULL), 'a');
+    assert_int_equal(set_param(FP_STEP_RATE_MAX, 200000, NULL, NULL), 'a');
+    assert_int_equal(set_param(FP_DIR_SETUP_NS, 980000, NULL, NULL), 'a');
 }
 
 /* The encoding alone, on results written out by hand. */

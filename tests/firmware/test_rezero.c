@@ -14,24 +14,14 @@
 
 #include "harness.h"
 
-static void set_param(int id, int32_t value)
-{
-    const unsigned from = F.tx_count;
-    const int32_t v[2] = {id, value};
-    send(PM_PARAM_SET, v);
-    run(2);
-    uint8_t reason = 0;
-    assert_int_equal(answer(from, proto_table[PM_PARAM_SET].function, &reason), 'a');
-}
-
 /* Homed, then disabled with the parameter changed, then enabled: is a move still taken? */
 static char move_after_change(int id, int32_t value, uint8_t *reason)
 {
     home();
-    assert_true(C.homed);
+    assert_true(fw_homed_of(C));
     cmd(PM_DISABLE);
     run(5);
-    set_param(id, value);
+    assert_int_equal(set_param(id, value, NULL, NULL), 'a');
     cmd(PM_ENABLE);
     run(5);
     const unsigned from = F.tx_count;
@@ -47,7 +37,7 @@ static void steps_per_m_clears_homed(void **state)
     uint8_t reason = 0;
     assert_int_equal(move_after_change(FP_STEPS_PER_M, 2 * fw_param_table[FP_STEPS_PER_M].def, &reason), 'r');
     assert_int_equal(reason, FW_REASON_NOT_HOMED);
-    assert_false(C.homed);
+    assert_false(fw_homed_of(C));
 }
 
 static void geometry_and_stroke_clear_homed(void **state)
@@ -75,7 +65,7 @@ static void margins_keep_homed(void **state)
     start();
     uint8_t reason = 0;
     assert_int_equal(move_after_change(FP_MU_MIN, fw_param_table[FP_MU_MIN].def + 1000, &reason), 'a');
-    assert_true(C.homed);
+    assert_true(fw_homed_of(C));
 }
 
 static void overrun_is_a_fault_with_a_controlled_stop(void **state)
@@ -85,20 +75,20 @@ static void overrun_is_a_fault_with_a_controlled_stop(void **state)
     home();
     move_to(NEAR, 1000);
     run(200);
-    assert_int_equal(C.state, FW_STATE_MOVING);
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
     /* As the step interrupt counts a segment it could not step in its time. */
-    ++C.sg.overruns;
+    fw_testing_overrun(C);
     run(5);
-    assert_int_equal(C.state, FW_STATE_STOPPING);
+    assert_int_equal(fw_state_of(C), FW_STATE_STOPPING);
     run(2000);
-    assert_int_equal(C.state, FW_STATE_FAULT);
-    assert_int_equal(C.fault, FW_FAULT_STEP_OVERRUN);
+    assert_int_equal(fw_state_of(C), FW_STATE_FAULT);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_STEP_OVERRUN);
     /* Cleared, re-enabled and re-homed, the old count does not fault again. */
     cmd(PM_CLEAR_FAULT);
     run(5);
     home();
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
 }
 
 int main(void)

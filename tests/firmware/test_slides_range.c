@@ -16,7 +16,7 @@ static void set(int id, int32_t value)
     const unsigned from = F.tx_count;
     const int32_t v[2] = {id, value};
     send(PM_PARAM_SET, v);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, proto_table[PM_PARAM_SET].function, NULL), 'a');
 }
 
@@ -24,7 +24,7 @@ static void set(int id, int32_t value)
 static void slides_a(int32_t *a1, int32_t *b1)
 {
     const unsigned from = F.tx_count;
-    fake_run(&F, &C, (uint32_t)C.params.v[FP_TELEMETRY_MS] + 1u);
+    fake_run(&F, C, (uint32_t)fw_params_of(C)->v[FP_TELEMETRY_MS] + 1u);
     const hal_can_frame *f = fake_last(&F, proto_table[PM_SLIDES_A].function, from);
     assert_non_null(f);
     memcpy(a1, f->data, 4);
@@ -40,14 +40,14 @@ static void slides_beyond_the_field_are_sent_at_its_end(void **state)
     set(FP_S_MAX, 5000000);
     /* A1 at 3 m and B1 at 1 m (in steps at 1.28M a metre), as homing would leave them. */
     int32_t pos[6] = {3840000, 1280000, 0, 0, 0, 0};
-    assert_int_equal(stepgen_set_position(&C.sg, pos), 0);
+    assert_int_equal(fw_testing_set_positions(C, pos), 0);
     int32_t a1 = 0, b1 = 0;
     slides_a(&a1, &b1);
     assert_int_equal(a1, INT32_MAX);
     assert_int_equal(b1, 1000000000);
     /* And below: -3 m. */
     pos[0] = -3840000;
-    assert_int_equal(stepgen_set_position(&C.sg, pos), 0);
+    assert_int_equal(fw_testing_set_positions(C, pos), 0);
     slides_a(&a1, &b1);
     assert_int_equal(a1, INT32_MIN);
 }

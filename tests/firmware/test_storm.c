@@ -12,10 +12,12 @@
 #include <cmocka.h>
 
 #include "fake_hal.h"
-#include "fw/controller_internal.h"
+#include "fw/controller.h"
+#include "fw/runtime.h"
 
 static fake_hal F;
-static fw_controller C;
+static fw_controller_mem C_mem;
+static fw_controller *C;
 
 static uint32_t rnd(void)
 {
@@ -77,14 +79,14 @@ static void recover(uint8_t *seq)
     const int32_t s1[1] = {(*seq)++}, s2[1] = {(*seq)++}, s3[1] = {(*seq)++}, hb[1] = {0};
     send(PM_CLEAR_FAULT, s1);
     send(PM_ENABLE, s2);
-    fake_run(&F, &C, 5);
+    fake_run(&F, C, 5);
     send(PM_HOME, s3);
-    for (int t = 0; t < 60000 && !(C.state == FW_STATE_IDLE && C.homed); t += 10) {
+    for (int t = 0; t < 60000 && !(fw_state_of(C) == FW_STATE_IDLE && fw_homed_of(C)); t += 10) {
         send(PM_HOST_HEARTBEAT, hb);
         F.tx_count = 0;
-        fake_run(&F, &C, 10);
+        fake_run(&F, C, 10);
     }
-    if (!(C.state == FW_STATE_IDLE && C.homed))
+    if (!(fw_state_of(C) == FW_STATE_IDLE && fw_homed_of(C)))
         return;
     const uint8_t s = (*seq)++;
     const int32_t a[3] = {s, 50000, 0}, b[3] = {s, 1050000, 0}, c[3] = {s, 0, 0}, m[3] = {s, 0, 2000};
@@ -101,8 +103,9 @@ static void test_storm(void **state)
     fake_hal_init(&F, &hal);
     for (int k = 0; k < 6; ++k)
         F.steps[k] = FAKE_SWITCH_AT + 3000; /* just above the homing switches */
-    const fw_config cfg = {1, 1000, 100000, false};
-    assert_int_equal(fw_init(&C, &hal, &cfg), 0);
+    const fw_config cfg = {1, 1000, 100000, NULL, NULL};
+    C = fw_init(&C_mem, &hal, &cfg);
+    assert_non_null(C);
     unsigned states_seen = 0;
     uint8_t seq = 100;
     for (int ms = 0; ms < 60000; ++ms) {
@@ -116,18 +119,18 @@ static void test_storm(void **state)
         F.forced_limits = rnd() % 30000 == 0 ? (uint16_t)(1u << (rnd() % 6)) : 0;
         F.tx_count = 0; /* the fake bus keeps the last millisecond only */
         const uint64_t before = F.pulses;
-        const fw_state s0 = C.state;
-        fake_run(&F, &C, 1);
-        assert_true((unsigned)C.state < FW_STATE_COUNT);
-        assert_true((unsigned)C.fault < FW_FAULT_COUNT);
-        states_seen |= 1u << C.state;
+        const fw_state s0 = fw_state_of(C);
+        fake_run(&F, C, 1);
+        assert_true((unsigned)fw_state_of(C) < FW_STATE_COUNT);
+        assert_true((unsigned)fw_fault_of(C) < FW_FAULT_COUNT);
+        states_seen |= 1u << fw_state_of(C);
         if (F.pulses != before) {
             /* Steps only from a state that moves the robot, and only with the drives on. */
             assert_true(F.enabled || s0 == FW_STATE_MOVING || s0 == FW_STATE_STOPPING || s0 == FW_STATE_HOMING);
             assert_true(s0 == FW_STATE_MOVING || s0 == FW_STATE_STOPPING || s0 == FW_STATE_HOMING ||
-                        C.state == FW_STATE_MOVING || C.state == FW_STATE_STOPPING || C.state == FW_STATE_HOMING);
+                        fw_state_of(C) == FW_STATE_MOVING || fw_state_of(C) == FW_STATE_STOPPING || fw_state_of(C) == FW_STATE_HOMING);
         }
-        if (C.state == FW_STATE_ESTOP || C.state == FW_STATE_DISABLED || C.state == FW_STATE_FAULT)
+        if (fw_state_of(C) == FW_STATE_ESTOP || fw_state_of(C) == FW_STATE_DISABLED || fw_state_of(C) == FW_STATE_FAULT)
             assert_false(F.enabled);
     }
     print_message("states visited: 0x%02x\n", states_seen);

@@ -40,17 +40,17 @@ static unsigned acks_since(unsigned from, uint8_t function)
 static void stream_and_go(unsigned n)
 {
     double p[6];
-    memcpy(p, C.pose, sizeof p);
+    memcpy(p, now().pose, sizeof p);
     const unsigned from = F.tx_count;
     for (unsigned i = 0; i < n; ++i) {
         p[2] += 0.001;
         traj_row(p, 50000, i == 0, false);
     }
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(acks_since(from, TRAJ_FN), n);
     run(300);
-    assert_int_equal(C.state, FW_STATE_MOVING);
-    assert_true(fw_traj_depth(&C.traj) > n / 3);
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
+    assert_true(now().traj_depth > n / 3);
 }
 
 /* STATUS a while after the controller came to rest: the queue is empty. */
@@ -67,12 +67,25 @@ static void assert_status_queue_empty(fw_state want)
 /* The trajectory runs to its end: at rest within 2 s, no fault, exactly at its last row p. */
 static void ends_at(const double p[6])
 {
-    for (int i = 0; i < 200 && C.state != FW_STATE_IDLE; ++i)
+    for (int i = 0; i < 200 && fw_state_of(C) != FW_STATE_IDLE; ++i)
         run(10);
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
     for (int k = 0; k < 6; ++k)
-        assert_true(fabs(C.pose[k] - p[k]) < 1e-9);
+        assert_true(fabs(now().pose[k] - p[k]) < 1e-9);
+}
+
+/* The row sent since tx index `from` refused `ended`, by the STOP that ended its trajectory; the
+ * robot then comes to rest, idle, no fault. */
+static void refused_ended_by_the_stop(unsigned from)
+{
+    const proto_message r = reject_of(from, TRAJ_FN);
+    assert_int_equal(r.v[2], FW_REASON_ENDED);
+    assert_int_equal(r.v[5], FW_TRAJ_END_STOP);
+    for (int i = 0; i < 100 && fw_state_of(C) == FW_STATE_STOPPING; ++i)
+        run(10);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
 }
 
 static void test_stop_drops_queue(void **state)
@@ -82,43 +95,57 @@ static void test_stop_drops_queue(void **state)
     stream_and_go(30);
     cmd(PM_STOP);
     run(10);
-    assert_int_equal(C.state, FW_STATE_STOPPING);
+    assert_int_equal(fw_state_of(C), FW_STATE_STOPPING);
     /* Nothing more is taken for the stopping trajectory, and the refusal says why. */
     unsigned from = F.tx_count;
     double more[6];
-    memcpy(more, C.traj.tail.pose, sizeof more);
+    memcpy(more, now().traj_tail, sizeof more);
     more[2] += 0.001;
     point(more, 50000, false);
-    fw_poll(&C);
-    const proto_message r = reject_of(from, TRAJ_FN);
-    assert_int_equal(r.v[2], FW_REASON_ENDED);
-    assert_int_equal(r.v[5], FW_TRAJ_END_STOP);
-    for (int i = 0; i < 100 && C.state == FW_STATE_STOPPING; ++i)
-        run(10);
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
-    assert_int_equal(fw_traj_depth(&C.traj), 0);
+    fw_poll(C);
+    refused_ended_by_the_stop(from);
+    assert_int_equal(now().traj_depth, 0);
     assert_status_queue_empty(FW_STATE_IDLE);
 
     /* A new trajectory runs from where the robot stopped, on a clock from zero: ten points
      * 0.5 mm down each, the last flagged, ending on the last point to the step. */
     double p[6], rest[6];
-    memcpy(rest, C.pose, sizeof rest);
+    memcpy(rest, now().pose, sizeof rest);
     memcpy(p, rest, sizeof p);
     from = F.tx_count;
     for (int i = 1; i <= 10; ++i) {
         p[2] = (double)lround((rest[2] - 0.0005 * i) * 1e6) * 1e-6; /* as the wire carries it */
         traj_row(p, 50000, i == 1, i == 10);
     }
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(acks_since(from, TRAJ_FN), 10);
-    assert_int_equal(fw_traj_end_us(&C.traj), 500000);
+    assert_int_equal(now().traj_end_us, 500000);
     ends_at(p);
     tse_ik_result ik;
-    assert_int_equal(tse_ik(&C.geom, p, NULL, &ik), TSE_OK);
+    assert_int_equal(tse_ik(fw_geometry_of(C), p, NULL, &ik), TSE_OK);
     for (int k = 0; k < 6; ++k)
         assert_int_equal(F.steps[k], lround(ik.q[k] * 1280000.0));
     assert_status_queue_empty(FW_STATE_IDLE);
+}
+
+/* Another client's STOP arriving while a row is validated: the STOP ends the validation and is
+ * answered first; the row is refused as a row of the trajectory the STOP ended, not for the state
+ * (stopping) the STOP left, so the host knows its trajectory ended (tse.can's Ended; the VM's
+ * tests_sim saw `state`). */
+static void test_stop_during_a_rows_validation_refuses_it_ended(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    stream_and_go(30);
+    const unsigned from = F.tx_count;
+    double more[6];
+    memcpy(more, now().traj_tail, sizeof more);
+    more[2] += 0.001;
+    point(more, 50000, false); /* 50 control segments to validate: the STOP is seen meanwhile */
+    cmd(PM_STOP);
+    fw_poll(C);
+    assert_int_equal(answer(from, proto_table[PM_STOP].function, NULL), 'a');
+    refused_ended_by_the_stop(from);
 }
 
 /* The host falls silent while streaming: a controlled stop, the fault latched, the queue gone. */
@@ -127,12 +154,12 @@ static void test_fault_drops_queue(void **state)
     (void)state;
     reach(FW_STATE_IDLE);
     stream_and_go(30);
-    for (int i = 0; i < 100 && C.state != FW_STATE_FAULT; ++i)
-        fake_run(&F, &C, 10); /* no heartbeat */
-    assert_int_equal(C.state, FW_STATE_FAULT);
-    assert_int_equal(C.fault, FW_FAULT_WATCHDOG);
-    assert_int_equal(fw_traj_depth(&C.traj), 0);
-    assert_int_equal(fw_traj_free(&C.traj), FW_TRAJ_CAPACITY);
+    for (int i = 0; i < 100 && fw_state_of(C) != FW_STATE_FAULT; ++i)
+        fake_run(&F, C, 10); /* no heartbeat */
+    assert_int_equal(fw_state_of(C), FW_STATE_FAULT);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_WATCHDOG);
+    assert_int_equal(now().traj_depth, 0);
+    assert_int_equal(now().traj_free, FW_TRAJ_CAPACITY);
     assert_status_queue_empty(FW_STATE_FAULT);
 }
 
@@ -142,18 +169,17 @@ static void test_stop_in_fault_drops_queue(void **state)
 {
     (void)state;
     reach(FW_STATE_FAULT);
-    tse_ik_result ik;
-    assert_int_equal(tse_ik(&C.geom, C.geom.home_pose, NULL, &ik), TSE_OK);
-    fw_traj_start(&C.traj, &C.lim, C.geom.home_pose, ik.q);
-    double p[6];
-    memcpy(p, C.geom.home_pose, sizeof p);
-    fw_plan_result why;
-    p[2] += 1e-5;
-    assert_int_equal(fw_traj_push(&C.traj, &C.geom, &C.lim, p, 50000, false, &why), 0);
-    assert_int_equal(fw_traj_depth(&C.traj), 1);
+    fw_traj_point pt;
+    memset(&pt, 0, sizeof pt);
+    memcpy(pt.pose, fw_geometry_of(C)->home_pose, sizeof pt.pose);
+    pt.pose[2] += 1e-5;
+    pt.q0[0] = 1.0;
+    pt.t_us = 50000;
+    fw_testing_hold_point(C, &pt);
+    assert_int_equal(now().traj_depth, 1);
     const unsigned from = F.tx_count;
     cmd(PM_STOP);
-    fw_poll(&C);
+    fw_poll(C);
     const hal_can_frame *ack = fake_last(&F, proto_table[PM_ACK].function, from);
     assert_non_null(ack);
     assert_int_equal(ack->data[0], proto_table[PM_STOP].function);
@@ -170,8 +196,8 @@ static void test_estop_drops_queue(void **state)
     stream_and_go(30);
     const unsigned from = F.tx_count;
     cmd(PM_ESTOP);
-    fw_poll(&C);
-    assert_int_equal(C.state, FW_STATE_ESTOP);
+    fw_poll(C);
+    assert_int_equal(fw_state_of(C), FW_STATE_ESTOP);
     const hal_can_frame *ack = fake_last(&F, proto_table[PM_ACK].function, from);
     assert_non_null(ack);
     assert_int_equal(ack->data[0], proto_table[PM_ESTOP].function);
@@ -187,10 +213,46 @@ static void test_underrun_drops_queue(void **state)
     (void)state;
     reach(FW_STATE_IDLE);
     stream_and_go(12);
-    for (int i = 0; i < 200 && C.state != FW_STATE_FAULT; ++i)
+    for (int i = 0; i < 200 && fw_state_of(C) != FW_STATE_FAULT; ++i)
         run(10);
-    assert_int_equal(C.state, FW_STATE_FAULT);
-    assert_int_equal(C.fault, FW_FAULT_UNDERRUN);
+    assert_int_equal(fw_state_of(C), FW_STATE_FAULT);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_UNDERRUN);
+    assert_status_queue_empty(FW_STATE_FAULT);
+}
+
+/* The control tick alone (the thread preempted), a period at a time, until the underrun's fault. */
+static void ticks_until_fault(void *arg, fake_hook_point at)
+{
+    (void)arg;
+    if (at != FAKE_AT_RECEIVE || F.rx_count > 0)
+        return; /* the row's frames are still being read */
+    F.hook = NULL;
+    for (int ms = 0; ms < 2000 && fw_state_of(C) != FW_STATE_FAULT; ++ms)
+        fake_tick_alone(&F, C);
+}
+
+/* A row the thread has read and is validating when the tick's underrun ends the trajectory: at the
+ * hand-over the tick refuses it `ended`, saying how, as every later row of it (it was `state`: the
+ * fault the underrun left, which the state table refuses rows in). */
+static void test_row_in_the_hand_over_when_the_tick_ends_it_is_refused_ended(void **state)
+{
+    (void)state;
+    reach(FW_STATE_IDLE);
+    stream_and_go(12);
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
+    const unsigned from = F.tx_count;
+    double more[6];
+    memcpy(more, now().traj_tail, sizeof more);
+    more[2] += 0.001;
+    point(more, 50000, false);
+    /* Once its frames are read, while it is validated, the tick runs until the queue has run out. */
+    F.hook = ticks_until_fault;
+    fw_poll(C);
+    assert_null(F.hook);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_UNDERRUN);
+    const proto_message r = reject_of(from, TRAJ_FN);
+    assert_int_equal(r.v[2], FW_REASON_ENDED);
+    assert_int_equal(r.v[5], FW_TRAJ_END_FAULT + 16 * FW_FAULT_UNDERRUN);
     assert_status_queue_empty(FW_STATE_FAULT);
 }
 
@@ -199,7 +261,7 @@ static void one_ms(void)
 {
     if ((F.now_us / 1000u) % 10u == 0)
         heartbeat();
-    fake_run(&F, &C, 1);
+    fake_run(&F, C, 1);
 }
 
 /* The TRAJ_END the controller sent since tx index `from`; false if none. */
@@ -231,9 +293,9 @@ static unsigned streaming_then(unsigned n, proto_msg m, double tail[6])
     reach(FW_STATE_IDLE);
     const unsigned from = F.tx_count;
     stream_and_go(n);
-    memcpy(tail, C.traj.tail.pose, 6 * sizeof tail[0]);
+    memcpy(tail, now().traj_tail, 6 * sizeof tail[0]);
     cmd(m);
-    fw_poll(&C);
+    fw_poll(C);
     return from;
 }
 
@@ -244,7 +306,7 @@ static proto_message row_after_end(double p[6])
     const unsigned from = F.tx_count;
     p[2] += 0.001;
     point(p, 50000, false);
-    fw_poll(&C);
+    fw_poll(C);
     const proto_message r = reject_of(from, TRAJ_FN);
     assert_int_equal(r.v[2], FW_REASON_ENDED);
     return r;
@@ -265,7 +327,7 @@ static unsigned answers_since(unsigned from, uint8_t function)
 static double idle_at(double p[6])
 {
     reach(FW_STATE_IDLE);
-    memcpy(p, C.pose, 6 * sizeof p[0]);
+    memcpy(p, now().pose, 6 * sizeof p[0]);
     return p[2];
 }
 
@@ -296,30 +358,30 @@ static void test_first_rows_wait_for_the_lead(void **state)
         traj_row(p, 20000, false, false);
         run(30);
     }
-    assert_int_equal(C.state, FW_STATE_MOVING);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
-    assert_int_equal(C.segments_run, 0); /* not one setpoint yet: the plate is at rest */
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
+    assert_int_equal(now().segments_run, 0); /* not one setpoint yet: the plate is at rest */
     rise_row(p, z0, 9, n);
     traj_row(p, 20000, false, false); /* 200 ms: the clock starts */
-    fw_poll(&C);
+    fw_poll(C);
     const uint64_t t0 = F.now_us;
     for (int i = 10; i < n; ++i) {
         rise_row(p, z0, i, n);
         traj_row(p, 20000, false, i == n - 1);
         run(10);
     }
-    assert_true(C.segments_run > 0);
-    while (C.state == FW_STATE_MOVING && F.now_us - t0 < 2000000u)
+    assert_true(now().segments_run > 0);
+    while (fw_state_of(C) == FW_STATE_MOVING && F.now_us - t0 < 2000000u)
         one_ms();
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
-    fw_poll(&C); /* the report goes out with the next poll */
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
+    fw_poll(C); /* the report goes out with the next poll */
     /* n rows of 20 ms from the clock's start, to within the 2 setpoints queued ahead. */
     const double took_ms = (double)(F.now_us - t0) * 1e-3;
     if (fabs(took_ms - 20.0 * n) > 4.0)
         fail_msg("the trajectory took %.1f ms from the clock's start, not %d", took_ms, 20 * n);
     for (int k = 0; k < 6; ++k)
-        assert_true(fabs(C.pose[k] - p[k]) < 1e-9);
+        assert_true(fabs(now().pose[k] - p[k]) < 1e-9);
     assert_traj_end(from, FW_TRAJ_END_DONE, FW_FAULT_NONE, n);
 }
 
@@ -335,31 +397,31 @@ static void test_last_row_or_full_queue_starts_the_clock(void **state)
         traj_row(p, 20000, i == 1, i == 3);
     }
     run(100);
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
     for (int k = 0; k < 6; ++k)
-        assert_true(fabs(C.pose[k] - p[k]) < 1e-9);
+        assert_true(fabs(now().pose[k] - p[k]) < 1e-9);
 
     start();
     const int32_t lead[2] = {FP_TRAJ_LEAD, 10000000};
     unsigned from = F.tx_count;
     send(PM_PARAM_SET, lead);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(answer(from, proto_table[PM_PARAM_SET].function, NULL), 'a');
     home();
-    memcpy(p, C.pose, sizeof p);
+    memcpy(p, now().pose, sizeof p);
     z0 = p[2];
     for (int i = 0; i < (int)FW_TRAJ_CAPACITY - 1; ++i) {
         rise_row(p, z0, i, 200);
         traj_row(p, 20000, i == 0, false);
     }
     run(50);
-    assert_int_equal(C.segments_run, 0);
+    assert_int_equal(now().segments_run, 0);
     rise_row(p, z0, FW_TRAJ_CAPACITY - 1, 200);
     traj_row(p, 20000, false, false); /* the queue is full */
     run(50);
-    assert_true(C.segments_run >= 45);
-    assert_int_equal(C.state, FW_STATE_MOVING);
+    assert_true(now().segments_run >= 45);
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
 }
 
 /* Rows in flight past a full queue: the first is refused queue_full, the next `order` (naming the
@@ -378,7 +440,7 @@ static void test_rows_after_a_full_queue_wait_their_turn(void **state)
         seqs[i] = seq;
         traj_row(p, 20000, i == 0, i == n - 1);
     }
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(acks_since(from, TRAJ_FN), FW_TRAJ_CAPACITY);
     assert_int_equal(answers_since(from, TRAJ_FN), n);
     unsigned refusals = 0;
@@ -405,9 +467,9 @@ static void test_rows_after_a_full_queue_wait_their_turn(void **state)
         rise_row(p, z0, i, n);
         traj_row(p, 20000, false, i == n - 1);
     }
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(acks_since(from, TRAJ_FN), 2);
-    assert_int_equal(fw_traj_end_us(&C.traj), 20000u * (unsigned)n);
+    assert_int_equal(now().traj_end_us, 20000u * (unsigned)n);
     ends_at(p);
 }
 
@@ -427,7 +489,7 @@ static void test_underrun_is_reported_with_its_row_and_lateness(void **state)
         p[2] = (double)lround((z0 + 1e-6 * i) * 1e6) * 1e-6;
         traj_row(p, 20000, i == 0, false);
     }
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(acks_since(from, TRAJ_FN), 15);
     const uint64_t t0 = F.now_us; /* the clock starts at the next control tick */
     proto_message end;
@@ -443,14 +505,14 @@ static void test_underrun_is_reported_with_its_row_and_lateness(void **state)
     from = F.tx_count;
     p[2] = (double)lround((z0 + 15e-6) * 1e6) * 1e-6;
     traj_row(p, 20000, false, false);
-    fw_poll(&C);
+    fw_poll(C);
     const proto_message r = reject_of(from, TRAJ_FN);
     assert_int_equal(r.v[2], FW_REASON_ENDED);
     assert_int_equal(r.v[5], FW_TRAJ_END_FAULT + 16 * FW_FAULT_UNDERRUN);
     if (r.v[6] < 37 || r.v[6] > 39)
         fail_msg("the late row was %d ms late, not 37 to 39", r.v[6]);
     assert_status_queue_empty(FW_STATE_FAULT);
-    assert_int_equal(C.fault, FW_FAULT_UNDERRUN);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_UNDERRUN);
 }
 
 /* A STOP from another host during a trajectory: the streaming host's rows still coming, during the
@@ -465,9 +527,9 @@ static void test_rows_of_a_stopped_trajectory_never_start_another(void **state)
     const uint64_t t_stop = F.now_us;
     run(10);
     assert_traj_end(from, FW_TRAJ_END_STOP, FW_FAULT_NONE, 30);
-    for (int i = 0; i < 100 && C.state != FW_STATE_IDLE; ++i)
+    for (int i = 0; i < 100 && fw_state_of(C) != FW_STATE_IDLE; ++i)
         run(10);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
     run(200);
     /* The streaming host goes on: rows of its trajectory reach an idle controller. */
     const uint64_t pulses = F.pulses;
@@ -479,7 +541,7 @@ static void test_rows_of_a_stopped_trajectory_never_start_another(void **state)
         assert_true(r.v[6] >= (int32_t)since_ms - 1 && r.v[6] <= (int32_t)since_ms + 1);
     }
     run(100);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
     assert_true(F.pulses == pulses);
     assert_int_equal(acks_since(from, TRAJ_FN), 0);
     assert_int_equal(answers_since(from, TRAJ_FN), 3);
@@ -490,11 +552,11 @@ static void test_rows_of_a_stopped_trajectory_never_start_another(void **state)
     assert_int_equal(s.v[6], 0);
     /* A first row starts a new one. */
     from = F.tx_count;
-    memcpy(p, C.pose, sizeof p);
+    memcpy(p, now().pose, sizeof p);
     traj_row(p, 50000, true, true);
-    fw_poll(&C);
+    fw_poll(C);
     assert_int_equal(acks_since(from, TRAJ_FN), 1);
-    assert_int_equal(C.state, FW_STATE_MOVING);
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
 }
 
 /* An e-stop ends the trajectory at once; a row of it is refused `ended` by the e-stop fault, in
@@ -504,7 +566,7 @@ static void test_estop_ends_the_trajectory(void **state)
     (void)state;
     double p[6];
     const unsigned from = streaming_then(20, PM_ESTOP, p);
-    fw_poll(&C);
+    fw_poll(C);
     assert_traj_end(from, FW_TRAJ_END_FAULT, FW_FAULT_ESTOP, 20);
     const proto_message r = row_after_end(p);
     assert_int_equal(r.v[5], FW_TRAJ_END_FAULT + 16 * FW_FAULT_ESTOP);
@@ -514,6 +576,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_stop_drops_queue),
+        cmocka_unit_test(test_stop_during_a_rows_validation_refuses_it_ended),
+        cmocka_unit_test(test_row_in_the_hand_over_when_the_tick_ends_it_is_refused_ended),
         cmocka_unit_test(test_fault_drops_queue),
         cmocka_unit_test(test_stop_in_fault_drops_queue),
         cmocka_unit_test(test_estop_drops_queue),

@@ -24,17 +24,18 @@ void rig_boot(sim_rig *r, double start_m)
     hal.can = fault_can_hal(&r->can);
     hal.inputs = r->in = fault_inputs_hal(&r->inputs);
     hal.stepper = fault_stepper_hal(&r->stepper);
-    const fw_config cfg = {1, RIG_CONTROL_HZ, RIG_STEP_HZ, false};
-    assert_int_equal(fw_init(&r->fw, &hal, &cfg), 0);
+    const fw_config cfg = {1, RIG_CONTROL_HZ, RIG_STEP_HZ, NULL, NULL};
+    r->fw = fw_init(&r->fw_mem, &hal, &cfg);
+    assert_non_null(r->fw);
     /* The plant is the machine the default parameters describe (as tse-sim builds it). */
-    const fw_param_set *fp = &r->fw.params;
+    const fw_param_set *fp = fw_params_of(r->fw);
     plant_config pc = {(double)fp->v[FP_STEPS_PER_M], fp->v[FP_SLIDE_VMAX] * 1e-6, fp->v[FP_SLIDE_AMAX] * 1e-6, 0.05,
-                       RIG_STEP_HZ, r->fw.sg.cfg.min_step_interval, (uint32_t)fp->v[FP_STEP_PULSE_NS],
+                       RIG_STEP_HZ, fw_stepgen_of(r->fw)->cfg.min_step_interval, (uint32_t)fp->v[FP_STEP_PULSE_NS],
                        (uint32_t)fp->v[FP_DIR_SETUP_NS], {0}};
     for (int k = 0; k < 6; ++k)
         pc.home_sw[k] = fp->v[FP_HOME_SW_1 + k] * 1e-6;
     const double s0[6] = {start_m, start_m, start_m, start_m, start_m, start_m};
-    plant_init(&r->plant, &pc, &r->fw.geom, s0);
+    plant_init(&r->plant, &pc, fw_geometry_of(r->fw), s0);
     r->host_alive = true;
     r->seq = 1;
 }
@@ -46,7 +47,7 @@ static bool moves_robot(fw_state s)
 
 static void check(sim_rig *r, fw_state s0, bool estop_open, uint64_t emitted0)
 {
-    const fw_controller *c = &r->fw;
+    const fw_inspection in = rig_now(r), *c = &in;
     const double t = (double)r->bus.now_us * 1e-6;
     if (r->plant.breaches & ~r->allowed_breaches)
         fail_msg("t = %.3f s: plant: %s (breaches 0x%x; state %d, fault %d)", t, r->plant.first_breach,
@@ -68,10 +69,8 @@ static void check(sim_rig *r, fw_state s0, bool estop_open, uint64_t emitted0)
         r->offset_known = false; /* homing sets the zero */
         return;
     }
-    int32_t pos[6];
-    stepgen_positions(&c->sg, pos);
     for (int k = 0; k < 6; ++k) {
-        const int64_t d = (int64_t)pos[k] - (r->plant.steps[k] + r->stepper.lost[k]);
+        const int64_t d = (int64_t)c->sg_pos[k] - (r->plant.steps[k] + r->stepper.lost[k]);
         if (r->offset_known && d != r->offset[k])
             fail_msg("t = %.3f s: slide %d: the controller's count moved %lld steps away from the pulses it gave", t,
                      k + 1, (long long)(d - r->offset[k]));
@@ -94,22 +93,26 @@ static void collect(sim_rig *r)
     r->bus.tx_count = 0;
 }
 
+/* The rig's part of each call of a period: the test's hook after the poll, the plant's step. */
+static void ran(void *ctx, fw_ran what)
+{
+    sim_rig *r = ctx;
+    if (what == FW_RAN_POLL && r->after_poll)
+        r->after_poll(r->after_poll_arg);
+    else if (what == FW_RAN_STEP)
+        plant_tick(&r->plant);
+}
+
 void rig_tick(sim_rig *r)
 {
     const bool estop_open = r->in.estop(r->in.ctx); /* as this period's control tick reads it */
-    const fw_state s0 = r->fw.state;
+    const fw_state s0 = fw_state_of(r->fw);
     const uint64_t emitted0 = r->plant.pulses + r->stepper.lost_total;
-    fw_poll(&r->fw);
-    if (r->after_poll)
-        r->after_poll(r->after_poll_arg);
-    fw_control_tick(&r->fw);
-    for (uint32_t t = 0; t < RIG_STEP_HZ / RIG_CONTROL_HZ; ++t) {
-        fw_step_tick(&r->fw);
-        plant_tick(&r->plant);
-    }
+    fw_run_period(r->fw, ran, r);
     r->bus.now_us += 1000000u / RIG_CONTROL_HZ;
     ++r->ticks;
-    ++r->state_ms[r->fw.state < FW_STATE_COUNT ? r->fw.state : 0];
+    const fw_state s = fw_state_of(r->fw);
+    ++r->state_ms[s < FW_STATE_COUNT ? s : 0];
     collect(r);
     check(r, s0, estop_open, emitted0);
 }
@@ -127,9 +130,9 @@ void rig_run(sim_rig *r, uint32_t ms)
 
 bool rig_until(sim_rig *r, fw_state s, uint32_t max_ms)
 {
-    for (uint32_t m = 0; m < max_ms && r->fw.state != s; ++m)
+    for (uint32_t m = 0; m < max_ms && fw_state_of(r->fw) != s; ++m)
         rig_run(r, 1);
-    return r->fw.state == s;
+    return fw_state_of(r->fw) == s;
 }
 
 void rig_send(sim_rig *r, proto_msg m, const int32_t *v)
@@ -173,9 +176,9 @@ void rig_home(sim_rig *r)
     const uint8_t h = rig_cmd(r, PM_HOME);
     rig_run(r, 10);
     assert_int_equal(rig_answer(r, from, proto_table[PM_HOME].function, h, NULL), 'a');
-    assert_int_equal(r->fw.state, FW_STATE_HOMING);
+    assert_int_equal(fw_state_of(r->fw), FW_STATE_HOMING);
     assert_true(rig_until(r, FW_STATE_IDLE, 120000));
-    assert_true(r->fw.homed);
+    assert_true(fw_homed_of(r->fw));
     for (int k = 0; k < 6; ++k)
         if (llabs((long long)rig_count_error(r, k)) > 1)
             fail_msg("slide %d: after homing the controller counts %lld steps from the truth", k + 1,
@@ -254,6 +257,13 @@ bool rig_plate_at(sim_rig *r, const double want[6])
 int64_t rig_count_error(const sim_rig *r, int k)
 {
     int32_t pos[6];
-    stepgen_positions(&r->fw.sg, pos);
+    stepgen_positions(fw_stepgen_of(r->fw), pos);
     return (int64_t)pos[k] - r->plant.steps[k];
+}
+
+fw_inspection rig_now(const sim_rig *r)
+{
+    fw_inspection i;
+    fw_inspect(r->fw, &i);
+    return i;
 }

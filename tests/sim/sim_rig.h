@@ -1,7 +1,7 @@
 /* The controller as tse-sim runs it, on the fake clock: the firmware; the fault layer (hal/fault)
  * around its bus, its switches and its drives; the real plant (hal/posix) behind them; the fake
- * HAL's bus, clock and parameter storage.  A control period is what tse-sim's ticker does: a poll,
- * a control tick, then its step interrupts against the plant.
+ * HAL's bus, clock and parameter storage, in one context: a control period is fw_run_period, the
+ * plant taking each step tick.
  *
  * After every period rig_tick checks what must hold whatever the faults, and fails the test
  * otherwise:
@@ -23,7 +23,9 @@
 #include <stdint.h>
 
 #include "fake_hal.h"
-#include "fw/controller_internal.h"
+#include "fw/controller.h"
+#include "fw/inspect.h"
+#include "fw/runtime.h"
 #include "hal_fault/fault_can.h"
 #include "hal_fault/fault_inputs.h"
 #include "hal_fault/fault_stepper.h"
@@ -40,7 +42,8 @@ typedef struct {
 
 typedef struct {
     fake_hal bus;             /* bus, clock, storage; its stepper and inputs are not used */
-    fw_controller fw;
+    fw_controller_mem fw_mem;
+    fw_controller *fw;        /* in fw_mem: a copy of the rig holds its own pointer only once copied back */
     tse_plant plant;
     fault_can can;            /* tests configure the faults through can.cfg, inputs.cfg, stepper.cfg */
     fault_inputs inputs;
@@ -89,6 +92,9 @@ char rig_answer(const sim_rig *r, unsigned from, uint8_t function, int seq, uint
 unsigned rig_answers(const sim_rig *r, unsigned from, uint8_t function);
 /* The newest STATUS the host received since `from`, decoded (fails if none). */
 proto_message rig_status(const sim_rig *r, unsigned from);
+
+/* The controller's observable state now (fw/inspect.h). */
+fw_inspection rig_now(const sim_rig *r);
 
 /* The plate's true pose (forward kinematics of the plant's slides) within 10 um and 1e-5 rad of
  * want. */

@@ -86,7 +86,7 @@ static void test_dropped(void **state)
     tick_with(FAULT_DROP);
     rig_run(&R, 200);
     assert_int_equal(rig_answers(&R, from, FN(PM_HOME)), 0);
-    assert_int_equal(R.fw.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_IDLE);
     /* A lost pose part: its commit finds the pose incomplete, and nothing moves. */
     const uint64_t pulses = R.plant.pulses;
     const uint8_t s = R.seq++;
@@ -100,7 +100,7 @@ static void test_dropped(void **state)
     uint8_t reason = 0;
     assert_int_equal(rig_answer(&R, from, FN(PM_MOVE_COMMIT), s, &reason), 'r');
     assert_int_equal(reason, FW_REASON_INCOMPLETE);
-    assert_int_equal(R.fw.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_IDLE);
     assert_true(R.plant.pulses == pulses);
     assert_int_equal(R.can.stats.faults[FAULT_DROP], 2);
     /* The pose whole under a new number is taken, and the plate lands on it. */
@@ -133,25 +133,25 @@ static void test_duplicated(void **state)
      * (the rig's plant checks). */
     rig_move(&R, OTHER, 2000);
     rig_run(&R, 500);
-    assert_int_equal(R.fw.state, FW_STATE_MOVING);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_MOVING);
     from = R.nlog;
     rig_cmd(&R, PM_STOP);
     tick_with(FAULT_DUP);
-    assert_int_equal(R.fw.state, FW_STATE_STOPPING);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_STOPPING);
     assert_int_equal(nth(from, FN(PM_STOP), 0, NULL, NULL), 'a');
     assert_int_equal(nth(from, FN(PM_STOP), 1, NULL, NULL), 'a');
     assert_true(rig_until(&R, FW_STATE_IDLE, 5000));
     /* A duplicated ENABLE: the copy finds the robot enabled already. */
     rig_cmd(&R, PM_DISABLE);
     rig_run(&R, 10);
-    assert_int_equal(R.fw.state, FW_STATE_DISABLED);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_DISABLED);
     from = R.nlog;
     rig_cmd(&R, PM_ENABLE);
     tick_with(FAULT_DUP);
     assert_int_equal(nth(from, FN(PM_ENABLE), 0, NULL, NULL), 'a');
     assert_int_equal(nth(from, FN(PM_ENABLE), 1, &reason, NULL), 'r');
     assert_int_equal(reason, FW_REASON_STATE);
-    assert_int_equal(R.fw.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_IDLE);
     assert_int_equal(R.can.stats.faults[FAULT_DUP], 3);
 }
 
@@ -174,7 +174,7 @@ static void test_reordered(void **state)
     uint8_t reason = 0;
     assert_int_equal(rig_answer(&R, from, FN(PM_MOVE_COMMIT), s, &reason), 'r');
     assert_int_equal(reason, FW_REASON_INCOMPLETE);
-    assert_int_equal(R.fw.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_IDLE);
     assert_true(R.plant.pulses == pulses);
     assert_int_equal(R.can.stats.faults[FAULT_REORDER], 1);
     assert_int_equal(R.can.nheld, 0); /* the part came in right after the commit */
@@ -239,8 +239,8 @@ static void test_corrupted_length(void **state)
         assert_int_equal(reason, FW_REASON_BAD_LENGTH);
         assert_int_equal(sq, 0); /* an undecodable frame has no sequence number */
         assert_int_equal(rig_answers(&R, from, FN(cmds[i])), 1);
-        assert_int_equal(R.fw.state, FW_STATE_IDLE);
-        assert_true(R.fw.homed);
+        assert_int_equal(fw_state_of(R.fw), FW_STATE_IDLE);
+        assert_true(fw_homed_of(R.fw));
     }
     assert_int_equal(R.can.stats.corrupt_length, 6);
     rig_run(&R, 100);
@@ -258,7 +258,7 @@ static void test_corrupted_identifier(void **state)
     unsigned other_node = 0;
     for (int i = 0; i < 24; ++i) {
         const unsigned from = R.nlog;
-        const fw_state s0 = R.fw.state;
+        const fw_state s0 = fw_state_of(R.fw);
         rig_cmd(&R, PM_HOME);
         tick_with(FAULT_CORRUPT);
         assert_int_not_equal(delivered.id, proto_id(PM_HOME, 1));
@@ -268,12 +268,12 @@ static void test_corrupted_identifier(void **state)
                 const uint8_t fn = (uint8_t)(R.log[j % RIG_LOG].f.id >> PROTO_NODE_BITS);
                 assert_true(fn != FN(PM_ACK) && fn != FN(PM_REJECT));
             }
-            assert_int_equal(R.fw.state, s0);
+            assert_int_equal(fw_state_of(R.fw), s0);
         }
     }
     /* No HOME reached it whole: still idle, homed, at rest. */
-    assert_int_equal(R.fw.state, FW_STATE_IDLE);
-    assert_true(R.fw.homed);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_IDLE);
+    assert_true(fw_homed_of(R.fw));
     print_message("identifier corrupted 24 times, %u of them to another node\n", other_node);
     assert_true(other_node > 0);
 }

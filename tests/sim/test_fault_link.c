@@ -51,7 +51,7 @@ static void test_short_silence(void **state)
 {
     (void)state;
     ready();
-    const uint32_t wd = (uint32_t)R.fw.params.v[FP_WATCHDOG_MS];
+    const uint32_t wd = (uint32_t)fw_params_of(R.fw)->v[FP_WATCHDOG_MS];
     rig_move(&R, TARGET, 2000);
     rig_run(&R, 300);
     after_heartbeat();
@@ -59,7 +59,7 @@ static void test_short_silence(void **state)
     R.can.cfg.silence = (fault_window){now(), now() + (wd - 10 - 2) * 1000u};
     rig_run(&R, wd);
     assert_true(R.can.stats.silenced > 0);
-    assert_int_equal(R.fw.fault, FW_FAULT_NONE);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_NONE);
     lands_on(TARGET);
 }
 
@@ -70,7 +70,7 @@ static void test_silence_past_watchdog(void **state)
 {
     (void)state;
     ready();
-    const uint32_t wd = (uint32_t)R.fw.params.v[FP_WATCHDOG_MS];
+    const uint32_t wd = (uint32_t)fw_params_of(R.fw)->v[FP_WATCHDOG_MS];
     rig_move(&R, OTHER, 3000);
     rig_run(&R, 500);
     after_heartbeat();
@@ -80,12 +80,12 @@ static void test_silence_past_watchdog(void **state)
      * period that begins wd ms after it, in the next. */
     while (now() <= last_heartbeat + (uint64_t)wd * 1000u) {
         rig_run(&R, 1);
-        assert_int_equal(R.fw.state, FW_STATE_MOVING);
+        assert_int_equal(fw_state_of(R.fw), FW_STATE_MOVING);
     }
     rig_run(&R, 1); /* the period at wd + 1 ms */
-    assert_int_equal(R.fw.state, FW_STATE_STOPPING);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_STOPPING);
     assert_true(rig_until(&R, FW_STATE_FAULT, 3000));
-    assert_int_equal(R.fw.fault, FW_FAULT_WATCHDOG);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_WATCHDOG);
     assert_false(R.plant.enabled);
     /* The host hears of it (STATUS goes out; only what comes in is lost). */
     const unsigned from = R.nlog;
@@ -104,10 +104,10 @@ static void test_silence_past_watchdog(void **state)
     assert_int_equal(reason, FW_REASON_STATE);
     rig_cmd(&R, PM_CLEAR_FAULT);
     rig_run(&R, 10);
-    assert_int_equal(R.fw.state, FW_STATE_DISABLED);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_DISABLED);
     rig_cmd(&R, PM_ENABLE);
     rig_run(&R, 10);
-    assert_true(R.fw.homed);
+    assert_true(fw_homed_of(R.fw));
     rig_move(&R, TARGET, 1500);
     lands_on(TARGET);
 }
@@ -119,8 +119,8 @@ static void test_silence_while_disabled(void **state)
     rig_boot(&R, 0.205);
     R.can.cfg.silence = (fault_window){now(), now() + 3000000};
     rig_run(&R, 3000);
-    assert_int_equal(R.fw.state, FW_STATE_DISABLED);
-    assert_int_equal(R.fw.fault, FW_FAULT_NONE);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_DISABLED);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_NONE);
 }
 
 /* Bus-off while moving: a controlled stop from the period that sees it, the fault latched at rest;
@@ -135,7 +135,7 @@ static void test_bus_off(void **state)
     const unsigned before = R.nlog;
     R.can.cfg.bus_off = (fault_window){now(), now() + 150000};
     rig_run(&R, 1);
-    assert_int_equal(R.fw.state, FW_STATE_STOPPING);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_STOPPING);
     const uint8_t lost = rig_cmd(&R, PM_STOP);
     while (now() < R.can.cfg.bus_off.until_us)
         rig_run(&R, 1);
@@ -143,7 +143,7 @@ static void test_bus_off(void **state)
     assert_true(R.can.stats.send_refused > 0); /* STATUS, at least, was due */
     assert_true(R.can.stats.bus_off_lost > 0);
     assert_true(rig_until(&R, FW_STATE_FAULT, 3000));
-    assert_int_equal(R.fw.fault, FW_FAULT_BUS_OFF);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_BUS_OFF);
     assert_false(R.plant.enabled);
     rig_run(&R, 300);
     assert_int_equal(rig_answer(&R, before, FN(PM_STOP), lost, NULL), 0);
@@ -154,8 +154,8 @@ static void test_bus_off(void **state)
     const uint8_t c = rig_cmd(&R, PM_CLEAR_FAULT);
     rig_run(&R, 10);
     assert_int_equal(rig_answer(&R, from, FN(PM_CLEAR_FAULT), c, NULL), 'a');
-    assert_int_equal(R.fw.state, FW_STATE_DISABLED);
-    assert_int_equal(R.fw.fault, FW_FAULT_NONE);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_DISABLED);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_NONE);
 }
 
 /* A bus-off that began and ended between two control ticks' looks still latches the fault. */
@@ -165,10 +165,10 @@ static void test_bus_off_between_looks(void **state)
     ready();
     R.can.cfg.bus_off = (fault_window){now() + 200, now() + 700};
     rig_run(&R, 1); /* its look is at the start of the period: before the window */
-    assert_int_equal(R.fw.state, FW_STATE_IDLE);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_IDLE);
     rig_run(&R, 1); /* after it */
-    assert_int_equal(R.fw.state, FW_STATE_FAULT);
-    assert_int_equal(R.fw.fault, FW_FAULT_BUS_OFF);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_FAULT);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_BUS_OFF);
     assert_false(R.plant.enabled);
 }
 

@@ -66,8 +66,8 @@ static void clear_and_need_homing(void)
     assert_int_equal(rig_answer(&R, from, FN(PM_MOVE_COMMIT), m, &reason), 'r');
     assert_int_equal(reason, FW_REASON_STATE);
     assert_int_equal(answer_to(PM_CLEAR_FAULT, NULL), 'a');
-    assert_int_equal(R.fw.state, FW_STATE_DISABLED);
-    assert_int_equal(R.fw.fault, FW_FAULT_NONE);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_DISABLED);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_NONE);
     assert_false(R.plant.enabled);
     assert_int_equal(answer_to(PM_ENABLE, NULL), 'a');
     const unsigned again = R.nlog;
@@ -86,15 +86,15 @@ static void test_limit_mid_move(void **state)
     ready();
     rig_move(&R, OTHER, 3000);
     rig_run(&R, 600);
-    assert_int_equal(R.fw.state, FW_STATE_MOVING);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_MOVING);
     R.inputs.cfg.limit = (fault_window){now(), now() + 600000};
     R.inputs.cfg.limit_mask = 1u << (8 + 2); /* slide 3's high end */
     rig_run(&R, 1);
-    assert_int_equal(R.fw.state, FW_STATE_STOPPING);
-    assert_false(R.fw.homed);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_STOPPING);
+    assert_false(fw_homed_of(R.fw));
     assert_true(R.plant.enabled); /* braking under control, not cut */
     assert_true(rig_until(&R, FW_STATE_FAULT, 3000));
-    assert_int_equal(R.fw.fault, FW_FAULT_LIMIT);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_LIMIT);
     assert_false(R.plant.enabled);
     const unsigned from = R.nlog;
     rig_run(&R, 200);
@@ -107,7 +107,7 @@ static void test_limit_mid_move(void **state)
     rig_cmd(&R, PM_HOME);
     rig_run(&R, 10);
     assert_true(rig_until(&R, FW_STATE_IDLE, 120000));
-    assert_true(R.fw.homed);
+    assert_true(fw_homed_of(R.fw));
     rig_move(&R, TARGET, 1500);
     lands_on(TARGET);
 }
@@ -122,9 +122,9 @@ static void test_switch_disagrees_at_rest(void **state)
     R.inputs.cfg.limit = (fault_window){now(), FAULT_FOREVER};
     R.inputs.cfg.limit_mask = 1u << 0;
     rig_run(&R, 1);
-    assert_int_equal(R.fw.state, FW_STATE_FAULT);
-    assert_int_equal(R.fw.fault, FW_FAULT_LIMIT);
-    assert_false(R.fw.homed);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_FAULT);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_LIMIT);
+    assert_false(fw_homed_of(R.fw));
     assert_false(R.plant.enabled);
     rig_run(&R, 100);
     assert_true(R.plant.pulses == pulses);
@@ -146,28 +146,28 @@ static void test_estop_at_random_instants(void **state)
             assert_int_equal(answer_to(PM_ENABLE, NULL), 'a');
             assert_int_equal(answer_to(PM_HOME, NULL), 'a');
             rig_run(&R, fault_rng_below(&rng, 4000)); /* homing takes about 6 s from here */
-            assert_int_equal(R.fw.state, FW_STATE_HOMING);
+            assert_int_equal(fw_state_of(R.fw), FW_STATE_HOMING);
         } else {
             ready();
             rig_move(&R, OTHER, 2000);
             rig_run(&R, 10 + fault_rng_below(&rng, 1500));
-            assert_int_equal(R.fw.state, FW_STATE_MOVING);
+            assert_int_equal(fw_state_of(R.fw), FW_STATE_MOVING);
             if (phase == 2) {
                 rig_cmd(&R, PM_STOP);
                 rig_run(&R, 1);
-                assert_int_equal(R.fw.state, FW_STATE_STOPPING);
+                assert_int_equal(fw_state_of(R.fw), FW_STATE_STOPPING);
             }
         }
-        const fw_state was = R.fw.state;
+        const fw_state was = fw_state_of(R.fw);
         /* Anywhere within the next period, for 50 to 500 ms. */
         const uint64_t at = now() + fault_rng_below(&rng, 1000);
         R.inputs.cfg.estop = (fault_window){at, at + 50000 + 1000u * fault_rng_below(&rng, 450)};
         rig_run(&R, 1);
         if (at > now() - 1000) /* the period's look came before the input opened */
             rig_run(&R, 1);
-        assert_int_equal(R.fw.state, FW_STATE_ESTOP);
-        assert_int_equal(R.fw.fault, FW_FAULT_ESTOP);
-        assert_false(R.fw.homed);
+        assert_int_equal(fw_state_of(R.fw), FW_STATE_ESTOP);
+        assert_int_equal(fw_fault_of(R.fw), FW_FAULT_ESTOP);
+        assert_false(fw_homed_of(R.fw));
         assert_false(R.plant.enabled);
         const uint64_t pulses = R.plant.pulses;
         uint8_t reason = 0;
@@ -197,7 +197,7 @@ static void test_stall_not_detected(void **state)
     (void)state;
     ready();
     const int k = 1; /* B1 */
-    const double spm = (double)R.fw.params.v[FP_STEPS_PER_M];
+    const double spm = (double)fw_params_of(R.fw)->v[FP_STEPS_PER_M];
     const int64_t at = R.plant.steps[k];
     R.stepper.cfg.stall = (fault_window){now(), FAULT_FOREVER};
     R.stepper.cfg.stall_mask = 1u << k;
@@ -208,8 +208,8 @@ static void test_stall_not_detected(void **state)
     assert_true(rig_until(&R, FW_STATE_IDLE, 30000));
     rig_run(&R, 200);
     /* Not detected. */
-    assert_int_equal(R.fw.fault, FW_FAULT_NONE);
-    assert_true(R.fw.homed);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_NONE);
+    assert_true(fw_homed_of(R.fw));
     const proto_message st = rig_status(&R, from);
     assert_int_equal(st.v[0], FW_STATE_IDLE);
     assert_int_equal(st.v[1], FW_FAULT_NONE);
@@ -223,25 +223,25 @@ static void test_stall_not_detected(void **state)
             assert_true(llabs((long long)rig_count_error(&R, j)) <= 1);
     assert_false(rig_plate_at(&R, HIGH));
     /* Down towards LOW: caught where the count passes 0.5 mm below the switch. */
-    const int32_t sw = (int32_t)((int64_t)R.fw.params.v[FP_HOME_SW_1 + k] * R.fw.params.v[FP_STEPS_PER_M] / 1000000);
+    const int32_t sw = (int32_t)((int64_t)fw_params_of(R.fw)->v[FP_HOME_SW_1 + k] * fw_params_of(R.fw)->v[FP_STEPS_PER_M] / 1000000);
     const int32_t tol = (int32_t)llround(500e-6 * spm);
     rig_move(&R, LOW, 2000);
     rig_run(&R, 10);
-    assert_int_equal(R.fw.state, FW_STATE_MOVING);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_MOVING);
     int32_t pos[6];
-    for (int t = 0; t < 30000 && R.fw.state == FW_STATE_MOVING; ++t) {
-        stepgen_positions(&R.fw.sg, pos); /* what this period's control tick reads */
+    for (int t = 0; t < 30000 && fw_state_of(R.fw) == FW_STATE_MOVING; ++t) {
+        stepgen_positions(fw_stepgen_of(R.fw), pos); /* what this period's control tick reads */
         rig_run(&R, 1);
-        if (R.fw.state == FW_STATE_MOVING)
+        if (fw_state_of(R.fw) == FW_STATE_MOVING)
             assert_true(pos[k] >= sw - tol);
     }
     const int32_t prev = pos[k];
-    assert_int_equal(R.fw.state, FW_STATE_STOPPING);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_STOPPING);
     assert_true(prev < sw - tol);
     assert_true(prev >= sw - tol - 192); /* the first period past it: at most 1 ms at 0.15 m/s */
     assert_true(rig_until(&R, FW_STATE_FAULT, 3000));
-    assert_int_equal(R.fw.fault, FW_FAULT_LIMIT);
-    assert_false(R.fw.homed);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_LIMIT);
+    assert_false(fw_homed_of(R.fw));
 }
 
 /* A slide stalled at speed stops dead and restarts dead: the plant sees an acceleration no
@@ -253,15 +253,15 @@ static void test_stall_at_speed(void **state)
     const int k = 0;
     rig_move(&R, TALL, 1500);
     rig_run(&R, 700);
-    assert_int_equal(R.fw.state, FW_STATE_MOVING);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_MOVING);
     R.allowed_breaches = PLANT_OVERACCEL;
     R.stepper.cfg.stall = (fault_window){now(), now() + 100000};
     R.stepper.cfg.stall_mask = 1u << k;
     assert_true(rig_until(&R, FW_STATE_IDLE, 30000));
     rig_run(&R, 200);
     assert_int_equal(R.plant.breaches, PLANT_OVERACCEL);
-    assert_int_equal(R.fw.fault, FW_FAULT_NONE);
-    assert_true(R.fw.homed);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_NONE);
+    assert_true(fw_homed_of(R.fw));
     /* 100 ms at over 2 cm/s: thousands of steps the slide never took. */
     assert_true(R.stepper.lost[k] < -2560);
     assert_true(rig_count_error(&R, k) == R.stepper.lost[k]);

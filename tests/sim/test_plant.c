@@ -16,14 +16,34 @@
 
 #include "fake_hal.h"
 #include "fw/controller.h"
+#include "fw/inspect.h"
+#include "fw/runtime.h"
 #include "hal_posix/plant.h"
 
 static fake_hal F;
-static fw_controller C;
+static fw_controller_mem C_mem;
+static fw_controller *C;
 static tse_plant P;
 static uint8_t seq = 1;
 static uint32_t homing_ms;  /* simulated time spent in HOMING by the last start() */
 static double lowest[6];    /* lowest true slide positions since start() [m] */
+
+static fw_inspection now(void)
+{
+    fw_inspection i;
+    fw_inspect(C, &i);
+    return i;
+}
+
+/* The plant takes each step tick; the time in HOMING is counted at each control tick. */
+static void ran(void *ctx, fw_ran what)
+{
+    (void)ctx;
+    if (what == FW_RAN_STEP)
+        plant_tick(&P);
+    else if (what == FW_RAN_CONTROL && fw_state_of(C) == FW_STATE_HOMING)
+        ++homing_ms;
+}
 
 static void run(uint32_t ms)
 {
@@ -35,21 +55,14 @@ static void run(uint32_t ms)
             fake_send(&F, f.id, f.len, f.data);
         }
         F.tx_count = 0;
-        fw_poll(&C);
-        fw_control_tick(&C);
-        if (C.state == FW_STATE_HOMING)
-            ++homing_ms;
-        for (int t = 0; t < 100; ++t) {
-            fw_step_tick(&C);
-            plant_tick(&P);
-        }
+        fw_run_period(C, ran, NULL);
         F.now_us += 1000;
         for (int k = 0; k < 6; ++k)
             if ((double)P.steps[k] / 1280000.0 < lowest[k])
                 lowest[k] = (double)P.steps[k] / 1280000.0;
         if (P.breaches)
             fail_msg("plant: %s (state %d src %d stopping %d tau %.4f of %.4f, homing %d phase %d fault %d depth %u)", P.first_breach,
-                     C.state, C.src, C.stopping, (double)C.tau, (double)C.move.prof.T, C.home.active, C.home.phase, C.fault, C.traj.count);
+                     fw_state_of(C), now().src, now().stopping, (double)now().tau, (double)now().move.prof.T, now().home_active, now().home_phase, fw_fault_of(C), now().traj_depth);
     }
 }
 
@@ -80,18 +93,18 @@ static void move_to(const double p[6], int32_t ms)
 
 static void wait_idle(uint32_t max_ms)
 {
-    for (uint32_t t = 0; t < max_ms && !(C.state == FW_STATE_IDLE && C.src == FW_SRC_NONE); t += 50) {
+    for (uint32_t t = 0; t < max_ms && !(fw_state_of(C) == FW_STATE_IDLE && now().src == FW_SRC_NONE); t += 50) {
         run(50);
         if (getenv("TSE_DEBUG") && t % 1000 == 0)
-            print_message("t %u state %d src %d run %u queued %u running %d sgtick %u\n", t, C.state, C.src, C.segments_run,
-                          stepgen_queued(&C.sg), C.sg.running, C.sg.tick);
+            print_message("t %u state %d src %d run %u queued %u running %d sgtick %u\n", t, fw_state_of(C), now().src, now().segments_run,
+                          stepgen_queued(fw_stepgen_of(C)), fw_stepgen_of(C)->running, fw_stepgen_of(C)->tick);
     }
     run(20);
-    if (C.state != FW_STATE_IDLE)
+    if (fw_state_of(C) != FW_STATE_IDLE)
         print_message("stuck: state %d src %d tau %.4f T %.4f segs %u run %u queued %u stopping %d has_next %d fault %d\n",
-                      C.state, C.src, (double)C.tau, (double)C.move.prof.T, C.move.segments, C.segments_run,
-                      stepgen_queued(&C.sg), C.stopping, C.has_next, C.fault);
-    assert_int_equal(C.state, FW_STATE_IDLE);
+                      fw_state_of(C), now().src, (double)now().tau, (double)now().move.prof.T, now().move.segments, now().segments_run,
+                      stepgen_queued(fw_stepgen_of(C)), now().stopping, now().has_next, fw_fault_of(C));
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
 }
 
 static void assert_pose(const double want[6])
@@ -111,23 +124,24 @@ static void boot(const double s0[6], const int32_t *sw_um)
 {
     fw_hal hal;
     fake_hal_init(&F, &hal);
-    const fw_config cfg = {1, 1000, 100000, false};
+    const fw_config cfg = {1, 1000, 100000, NULL, NULL};
     /* The plant takes over the stepper and the inputs; the bus, clock and storage stay fake. */
     hal.stepper = plant_stepper(&P);
     hal.inputs = plant_inputs(&P);
-    assert_int_equal(fw_init(&C, &hal, &cfg), 0);
+    C = fw_init(&C_mem, &hal, &cfg);
+    assert_non_null(C);
     for (int k = 0; sw_um && k < 6; ++k) {
         const int32_t v[2] = {FP_HOME_SW_1 + k, sw_um[k]};
         send(PM_PARAM_SET, v);
-        fw_poll(&C); /* no step tick: the plant is not built yet */
-        assert_int_equal(C.params.v[FP_HOME_SW_1 + k], sw_um[k]);
+        fw_poll(C); /* no step tick: the plant is not built yet */
+        assert_int_equal(fw_params_of(C)->v[FP_HOME_SW_1 + k], sw_um[k]);
     }
-    plant_config pc = {(double)C.params.v[FP_STEPS_PER_M], C.params.v[FP_SLIDE_VMAX] * 1e-6,
-                       C.params.v[FP_SLIDE_AMAX] * 1e-6, 0.05, 100000, C.sg.cfg.min_step_interval,
-                       (uint32_t)C.params.v[FP_STEP_PULSE_NS], (uint32_t)C.params.v[FP_DIR_SETUP_NS], {0}};
+    plant_config pc = {(double)fw_params_of(C)->v[FP_STEPS_PER_M], fw_params_of(C)->v[FP_SLIDE_VMAX] * 1e-6,
+                       fw_params_of(C)->v[FP_SLIDE_AMAX] * 1e-6, 0.05, 100000, fw_stepgen_of(C)->cfg.min_step_interval,
+                       (uint32_t)fw_params_of(C)->v[FP_STEP_PULSE_NS], (uint32_t)fw_params_of(C)->v[FP_DIR_SETUP_NS], {0}};
     for (int k = 0; k < 6; ++k)
-        pc.home_sw[k] = C.params.v[FP_HOME_SW_1 + k] * 1e-6;
-    plant_init(&P, &pc, &C.geom, s0);
+        pc.home_sw[k] = fw_params_of(C)->v[FP_HOME_SW_1 + k] * 1e-6;
+    plant_init(&P, &pc, fw_geometry_of(C), s0);
     for (int k = 0; k < 6; ++k)
         lowest[k] = s0[k];
 }
@@ -141,17 +155,17 @@ static void homing(void)
     homing_ms = 0;
     cmd(PM_HOME);
     run(20);
-    for (int t = 0; t < 120000 && C.state == FW_STATE_HOMING; t += 100)
+    for (int t = 0; t < 120000 && fw_state_of(C) == FW_STATE_HOMING; t += 100)
         run(100);
-    assert_int_equal(C.state, FW_STATE_IDLE);
-    assert_true(C.homed);
+    assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
+    assert_true(fw_homed_of(C));
     int32_t count[6];
-    stepgen_positions(&C.sg, count);
+    stepgen_positions(fw_stepgen_of(C), count);
     for (int k = 0; k < 6; ++k)
         if (llabs((long long)count[k] - (long long)P.steps[k]) > 1)
             fail_msg("slide %d: the controller counts %d steps, the slide is at %lld", k + 1, count[k],
                      (long long)P.steps[k]);
-    assert_pose(C.geom.home_pose);
+    assert_pose(fw_geometry_of(C)->home_pose);
 }
 
 static void start(double at)
@@ -205,7 +219,7 @@ static void test_blend_stop_and_estop_keep_invariants(void **state)
     run(700);
     cmd(PM_ESTOP);
     run(200);
-    assert_int_equal(C.state, FW_STATE_ESTOP);
+    assert_int_equal(fw_state_of(C), FW_STATE_ESTOP);
 }
 
 static void test_trajectory(void **state)
@@ -235,18 +249,18 @@ static void test_trajectory(void **state)
         send(PM_TRAJ_COMMIT, T);
         memcpy(last, p, sizeof last);
         /* Flow control: keep the queue nearly full, as a host streaming against queue_free would. */
-        while (C.traj.count > 24)
+        while (now().traj_depth > 24)
             run(5);
         run(1);
         if (getenv("TSE_DEBUG") && i % 10 == 0)
-            print_message("i %d count %u tau %.3f end %.3f state %d\n", i, C.traj.count, (double)C.tau,
-                          (double)fw_traj_end_us(&C.traj) * 1e-6, C.state);
-        if (fw_traj_end_us(&C.traj) != 2000000u + 20000u * (uint64_t)(i - 1)) {
+            print_message("i %d count %u tau %.3f end %.3f state %d\n", i, now().traj_depth, (double)now().tau,
+                          (double)now().traj_end_us * 1e-6, fw_state_of(C));
+        if (now().traj_end_us != 2000000u + 20000u * (uint64_t)(i - 1)) {
             const hal_can_frame *r = fake_last(&F, 0x03, 0);
             fail_msg("point %d refused: reason %d, kinematic status %d, scissor %d", i, r ? r->data[2] : -1,
                      r ? r->data[4] : -1, r ? r->data[3] : -1);
         }
-        assert_int_not_equal(C.state, FW_STATE_FAULT);
+        assert_int_not_equal(fw_state_of(C), FW_STATE_FAULT);
     }
     wait_idle(10000);
     for (int k = 0; k < 6; ++k)
@@ -274,10 +288,10 @@ static void test_underrun_stops_smoothly(void **state)
         send(PM_TRAJ_COMMIT, T);
         run(1);
     }
-    for (int t = 0; t < 6000 && C.state != FW_STATE_FAULT; t += 10)
+    for (int t = 0; t < 6000 && fw_state_of(C) != FW_STATE_FAULT; t += 10)
         run(10); /* run() fails the test on any breach */
-    assert_int_equal(C.state, FW_STATE_FAULT);
-    assert_int_equal(C.fault, FW_FAULT_UNDERRUN);
+    assert_int_equal(fw_state_of(C), FW_STATE_FAULT);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_UNDERRUN);
 }
 
 /* The homing time of the defaults (homing_speed 20 mm/s, slide_amax 1 m/s^2, of which homing
@@ -308,7 +322,7 @@ static void test_homing_from_below(void **state)
 {
     (void)state;
     start(0.05);
-    const double t = homing_ms * 1e-3, d_home = C.geom.home_s - 0.2;
+    const double t = homing_ms * 1e-3, d_home = fw_geometry_of(C)->home_s - 0.2;
     const double bound = homing_bound_s(0.2 - 0.05 + 2 * 0.002, d_home);
     print_message("homing from 0.05 m: %.2f s (bound %.2f s, at the creep speed %.0f s)\n", t, bound,
                   0.15 / (0.02 / 64));
@@ -331,10 +345,10 @@ static void test_homing_from_above_own_switches(void **state)
     boot(s0, sw);
     homing();
     const double t = homing_ms * 1e-3;
-    const double bound = homing_bound_s(0.3 - 0.19, C.geom.home_s - 0.19);
+    const double bound = homing_bound_s(0.3 - 0.19, fw_geometry_of(C)->home_s - 0.19);
     print_message("homing from 0.3 m: %.2f s (bound %.2f s)\n", t, bound);
     assert_true(t <= bound);
-    assert_true(t >= (0.3 - 0.19) / 0.02 + (C.geom.home_s - 0.19) / SLIDE_VMAX_100KHZ);
+    assert_true(t >= (0.3 - 0.19) / 0.02 + (fw_geometry_of(C)->home_s - 0.19) / SLIDE_VMAX_100KHZ);
     /* Each slide went down to its own switch, and not beyond it by more than the braking
      * distance (0.22 mm) and the read-out lag. */
     for (int k = 0; k < 6; ++k) {
@@ -370,12 +384,12 @@ static void test_lost_steps_fault(void **state)
         boot(s0, sw);
         homing();
         run(200);
-        assert_int_equal(C.state, FW_STATE_IDLE);
+        assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
         shift(slide, slide == 0 ? -6400 : 6400); /* 5 mm */
         run(10);
-        assert_int_equal(C.state, FW_STATE_FAULT);
-        assert_int_equal(C.fault, FW_FAULT_LIMIT);
-        assert_false(C.homed);
+        assert_int_equal(fw_state_of(C), FW_STATE_FAULT);
+        assert_int_equal(fw_fault_of(C), FW_FAULT_LIMIT);
+        assert_false(fw_homed_of(C));
     }
 }
 
@@ -390,11 +404,11 @@ static void test_motion_below_switch(void **state)
     wait_idle(30000);
     assert_pose(low);
     assert_true(lowest[1] < 0.2 - 0.1);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
-    move_to(C.geom.home_pose, 1500);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
+    move_to(fw_geometry_of(C)->home_pose, 1500);
     wait_idle(30000);
-    assert_int_equal(C.fault, FW_FAULT_NONE);
-    assert_true(C.homed);
+    assert_int_equal(fw_fault_of(C), FW_FAULT_NONE);
+    assert_true(fw_homed_of(C));
 }
 
 /* The plant's switches and timing checks on their own, at 100 kHz (10 us ticks). */

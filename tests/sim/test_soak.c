@@ -156,7 +156,7 @@ static void judge(void)
         return;
     cur.open = false;
     ++n.delivered;
-    const fw_controller *c = &R.fw;
+    const fw_inspection now_in = rig_now(&R), *c = &now_in;
     const hal_can_frame *f = &cur.f;
     const uint8_t node = (uint8_t)(f->id & PROTO_NODE_MASK), fn = (uint8_t)(f->id >> PROTO_NODE_BITS);
     const proto_def *d = proto_lookup(fn, PROTO_TO_CONTROLLER);
@@ -233,23 +233,61 @@ static void judge(void)
     }
 }
 
+/* The frame whose handling begins now: the state it meets. */
+static void begin(const hal_can_frame *f)
+{
+    judge();
+    cur.open = true;
+    cur.f = *f;
+    cur.state = fw_state_of(R.fw);
+    cur.fault = fw_fault_of(R.fw);
+    cur.homed = fw_homed_of(R.fw);
+    cur.drives = fw_drives_of(R.fw);
+    cur.answers = 0;
+}
+
+/* While a commit is validated the controller reads the bus ahead (fw/work.h: heartbeats taken, a
+ * STOP seen) and handles what it read after the commit, in order.  Those frames wait here: the
+ * handling of the next begins once the one before has been answered, or has been passed by an
+ * answer naming another function, or at the end of the poll. */
+#define AHEAD 64u
+static struct {
+    hal_can_frame f[AHEAD];
+    unsigned head, count;
+} ahead;
+
+static bool validating(void)
+{
+    if (!cur.open || cur.answers > 0 || (cur.f.id & PROTO_NODE_MASK) != NODE)
+        return false;
+    const proto_def *d = proto_lookup((uint8_t)(cur.f.id >> PROTO_NODE_BITS), PROTO_TO_CONTROLLER);
+    return d && cur.f.len == d->dlc && (d->msg == PM_MOVE_COMMIT || d->msg == PM_TRAJ_COMMIT);
+}
+
+static void next_ahead(void)
+{
+    begin(&ahead.f[ahead.head]);
+    ahead.head = (ahead.head + 1u) % AHEAD;
+    --ahead.count;
+}
+
 static void tap(void *arg, fault_can_tap what, const hal_can_frame *f)
 {
     (void)arg;
     if (what == FAULT_TAP_DELIVERED) {
-        judge();
-        cur.open = true;
-        cur.f = *f;
-        cur.state = R.fw.state;
-        cur.fault = R.fw.fault;
-        cur.homed = R.fw.homed;
-        cur.drives = R.fw.drives_on;
-        cur.answers = 0;
+        if (ahead.count > 0 || validating()) {
+            assert_true(ahead.count < AHEAD);
+            ahead.f[(ahead.head + ahead.count++) % AHEAD] = *f;
+        } else {
+            begin(f);
+        }
         return;
     }
     const uint8_t fn = (uint8_t)(f->id >> PROTO_NODE_BITS);
     if (fn != FN(PM_ACK) && fn != FN(PM_REJECT))
         return;
+    while (ahead.count > 0 && (!cur.open || cur.answers > 0 || f->data[0] != (uint8_t)(cur.f.id >> PROTO_NODE_BITS)))
+        next_ahead();
     if (!cur.open) {
         ++n.unsolicited;
         error("an answer outside any frame's handling");
@@ -262,6 +300,8 @@ static void tap(void *arg, fault_can_tap what, const hal_can_frame *f)
 static void after_poll(void *arg)
 {
     (void)arg;
+    while (ahead.count > 0)
+        next_ahead();
     judge();
 }
 
@@ -286,7 +326,7 @@ static struct {
 static void frame(host_kind k, uint16_t id, uint8_t len, const uint8_t *d)
 {
     fake_send(&R.bus, id, len, d);
-    ++n.by_state[R.fw.state];
+    ++n.by_state[fw_state_of(R.fw)];
     ++n.sent;
     ++n.by_kind[k];
 }
@@ -336,7 +376,7 @@ static void parts(uint8_t s, const double p[6])
 /* A pose's number, as tsectl takes it: one past the last accepted commit (STATUS.last_seq). */
 static uint8_t pose_seq(void)
 {
-    return (uint8_t)(R.fw.last_seq + 1);
+    return (uint8_t)(rig_now(&R).last_seq + 1);
 }
 
 static void move(void)
@@ -369,7 +409,7 @@ static void traj_start(void)
 {
     host.traj_left = 3 + (int)below(28);
     for (int k = 0; k < 6; ++k)
-        host.traj_pose[k] = (double)R.fw.pose[k];
+        host.traj_pose[k] = (double)rig_now(&R).pose[k];
     host.traj_id = pose_seq();
     traj_point(true);
     host.traj_wait = 10 + below(30);
@@ -391,7 +431,7 @@ static void param_set(void)
     case 1: id = FP_TELEMETRY_MS, value = (int32_t)below(200); break;
     case 2: id = FP_WATCHDOG_MS, value = 200 + (int32_t)below(1800); break;
     case 3: id = FP_HOMING_SPEED, value = 10000 + (int32_t)below(20000); break;
-    case 4: id = (int32_t)below(FP_COUNT), value = R.fw.params.v[id]; break;
+    case 4: id = (int32_t)below(FP_COUNT), value = fw_params_of(R.fw)->v[id]; break;
     default: id = FP_SLIDE_VMAX, value = 0; break; /* below its range */
     }
     if (chance(0.1))
@@ -461,7 +501,7 @@ static void invalid(void)
         break;
     }
     case 3: { /* an old sequence number: the last accepted commit's, or one before it */
-        const uint8_t s = (uint8_t)(R.fw.last_seq - below(100));
+        const uint8_t s = (uint8_t)(rig_now(&R).last_seq - below(100));
         if (chance(0.5)) {
             const int32_t v[3] = {s, 0, 1000};
             msg(K_STALE, PM_MOVE_COMMIT, v);
@@ -506,7 +546,7 @@ static void invalid(void)
 static void valid(void)
 {
     const uint32_t r = below(10000);
-    switch (R.fw.state) {
+    switch (fw_state_of(R.fw)) {
     case FW_STATE_DISABLED:
         if (r < 5500)
             simple(K_ENABLE, PM_ENABLE);
@@ -522,7 +562,7 @@ static void valid(void)
             simple(K_CLEAR_FAULT, PM_CLEAR_FAULT);
         break;
     case FW_STATE_IDLE:
-        if (!R.fw.homed) {
+        if (!fw_homed_of(R.fw)) {
             if (r < 6000)
                 simple(K_HOME, PM_HOME);
             else if (r < 6500)
@@ -611,7 +651,7 @@ static void host_ms(void)
         return;
     }
     /* A command every 20 ms on average; while homing, which takes seconds, every 50 ms. */
-    host.wait = below(R.fw.state == FW_STATE_HOMING ? 100 : 40);
+    host.wait = below(fw_state_of(R.fw) == FW_STATE_HOMING ? 100 : 40);
     if (chance(0.2))
         invalid();
     else
@@ -647,7 +687,7 @@ static void faults_ms(void)
     const uint64_t t = now();
     fault_can_config *cc = &R.can.cfg;
     fault_inputs_config *ic = &R.inputs.cfg;
-    const uint32_t wd = (uint32_t)R.fw.params.v[FP_WATCHDOG_MS];
+    const uint32_t wd = (uint32_t)fw_params_of(R.fw)->v[FP_WATCHDOG_MS];
     if (!open_window(&cc->silence, t) && due(W_SILENCE, 1.0 / 60000, t)) {
         const bool past = chance(0.5) || (n.windows[W_SILENCE_PAST_WD] == 0 && n.windows[W_SILENCE] % 2 == 1);
         const uint32_t ms = past ? wd + 10 + below(1000) : 50 + below(wd - 70);
@@ -673,7 +713,7 @@ static void faults_ms(void)
         started(W_ESTOP, t);
     }
     /* A homing switch only outside homing (see the top), a high-end one at any time. */
-    const bool homing = R.fw.state == FW_STATE_HOMING;
+    const bool homing = fw_state_of(R.fw) == FW_STATE_HOMING;
     const bool low = !homing && n.windows[W_LIMIT_LOW] <= n.windows[W_LIMIT_HIGH];
     if (!open_window(&ic->limit, t) && due(low ? W_LIMIT_LOW : W_LIMIT_HIGH, 1.0 / 40000, t)) {
         const uint32_t k = below(6);
@@ -707,7 +747,7 @@ static fw_param_set machine;
 
 static void after_tick(fw_state before)
 {
-    const fw_controller *c = &R.fw;
+    const fw_inspection now_in = rig_now(&R), *c = &now_in;
     for (int id = 0; id < FP_COUNT; ++id)
         if (physical(id) && c->params.v[id] != machine.v[id])
             fail_msg("t = %.3f s: parameter %d changed from %d to %d: the soak's own error (see the top)",
@@ -730,16 +770,16 @@ static void period(void)
     faults_ms();
     const uint32_t sent = n.sent;
     host_ms();
-    const fw_state before = R.fw.state;
+    const fw_state before = fw_state_of(R.fw);
     rig_tick(&R);
     after_tick(before);
-    if (trace && before == FW_STATE_MOVING && R.fw.state == FW_STATE_STOPPING)
+    if (trace && before == FW_STATE_MOVING && fw_state_of(R.fw) == FW_STATE_STOPPING)
         print_message("t %.3f stop: source %d at %.4f of %.4f s (ramps %.4f s), blend %d from segment %u, stop ramp %.4f s\n",
-                      (double)now() * 1e-6, R.fw.src, (double)R.fw.tau, (double)R.fw.move.prof.T, (double)R.fw.move.prof.Ta,
-                      R.fw.has_next, R.fw.blend_k0, (double)R.fw.stop_T);
-    if (trace && (R.fw.state != before || n.sent != sent))
+                      (double)now() * 1e-6, rig_now(&R).src, (double)rig_now(&R).tau, (double)rig_now(&R).move.prof.T, (double)rig_now(&R).move.prof.Ta,
+                      rig_now(&R).has_next, rig_now(&R).blend_k0, (double)rig_now(&R).stop_T);
+    if (trace && (fw_state_of(R.fw) != before || n.sent != sent))
         print_message("t %.3f state %d -> %d fault %d src %d stopping %d sent %u; windows: silence %d bus-off %d e-stop %d limit %d (0x%x); missed %u\n",
-                      (double)now() * 1e-6, before, R.fw.state, R.fw.fault, R.fw.src, R.fw.stopping, n.sent,
+                      (double)now() * 1e-6, before, fw_state_of(R.fw), fw_fault_of(R.fw), rig_now(&R).src, rig_now(&R).stopping, n.sent,
                       open_window(&R.can.cfg.silence, now()), open_window(&R.can.cfg.bus_off, now()),
                       open_window(&R.inputs.cfg.estop, now()), open_window(&R.inputs.cfg.limit, now()), R.inputs.cfg.limit_mask,
                       n.missed_steps);
@@ -750,7 +790,7 @@ static void period(void)
 static void calm(uint32_t ms)
 {
     for (uint32_t m = 0; m < ms; ++m) {
-        const fw_state before = R.fw.state;
+        const fw_state before = fw_state_of(R.fw);
         rig_run(&R, 1);
         after_tick(before);
     }
@@ -769,24 +809,24 @@ static void settle(void)
     memset(R.stepper.cfg.miss, 0, sizeof R.stepper.cfg.miss);
     host.traj_left = 0;
     calm(100); /* held frames come in */
-    if (R.fw.state == FW_STATE_MOVING || R.fw.state == FW_STATE_STOPPING || R.fw.state == FW_STATE_HOMING) {
+    if (fw_state_of(R.fw) == FW_STATE_MOVING || fw_state_of(R.fw) == FW_STATE_STOPPING || fw_state_of(R.fw) == FW_STATE_HOMING) {
         R.seq = host.seq;
         rig_cmd(&R, PM_STOP);
-        for (int t = 0; t < 60000 && (R.fw.state == FW_STATE_MOVING || R.fw.state == FW_STATE_STOPPING ||
-                                      R.fw.state == FW_STATE_HOMING);
+        for (int t = 0; t < 60000 && (fw_state_of(R.fw) == FW_STATE_MOVING || fw_state_of(R.fw) == FW_STATE_STOPPING ||
+                                      fw_state_of(R.fw) == FW_STATE_HOMING);
              ++t)
             calm(1);
     }
     R.seq = host.seq;
-    if (R.fw.state == FW_STATE_FAULT || R.fw.state == FW_STATE_ESTOP) {
+    if (fw_state_of(R.fw) == FW_STATE_FAULT || fw_state_of(R.fw) == FW_STATE_ESTOP) {
         rig_cmd(&R, PM_CLEAR_FAULT);
         calm(10);
     }
-    if (R.fw.state == FW_STATE_IDLE) {
+    if (fw_state_of(R.fw) == FW_STATE_IDLE) {
         rig_cmd(&R, PM_DISABLE);
         calm(10);
     }
-    assert_int_equal(R.fw.state, FW_STATE_DISABLED);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_DISABLED);
     rig_home(&R);
     static const double target[6] = {0.03, -0.02, 1.05, 0.02, 0.0, 0.05};
     const unsigned asked = R.nlog;
@@ -797,15 +837,15 @@ static void settle(void)
     const char a = final_answer(asked, PM_MOVE_COMMIT, last, &reason);
     if (a != 'a')
         fail_msg("the final move: answer '%c', reason %u (staged %u, parts 0x%x, last accepted %u)", a ? a : '-',
-                 reason, R.fw.stage_seq, R.fw.stage_have, R.fw.last_seq);
-    for (int t = 0; t < 30000 && R.fw.state != FW_STATE_IDLE; ++t)
+                 reason, rig_now(&R).stage_seq, rig_now(&R).stage_have, rig_now(&R).last_seq);
+    for (int t = 0; t < 30000 && fw_state_of(R.fw) != FW_STATE_IDLE; ++t)
         calm(1);
     const unsigned from = R.nlog;
     calm(1000); /* a STATUS comes at least every 0.5 s (the host sets status_ms up to 499) */
     /* Consistent: at rest, no fault, homed, the counts the truth, the plate on its target. */
-    assert_int_equal(R.fw.state, FW_STATE_IDLE);
-    assert_int_equal(R.fw.fault, FW_FAULT_NONE);
-    assert_true(R.fw.homed && R.plant.enabled);
+    assert_int_equal(fw_state_of(R.fw), FW_STATE_IDLE);
+    assert_int_equal(fw_fault_of(R.fw), FW_FAULT_NONE);
+    assert_true(fw_homed_of(R.fw) && R.plant.enabled);
     for (int k = 0; k < 6; ++k)
         assert_true(llabs((long long)rig_count_error(&R, k)) <= 1);
     assert_true(rig_plate_at(&R, target));
@@ -888,7 +928,7 @@ static void test_soak(void **state)
     memset(&cur, 0, sizeof cur);
     memset(&host, 0, sizeof host);
     rig_boot(&R, 0.05);
-    machine = R.fw.params;
+    machine = (*fw_params_of(R.fw));
     memset(miss_base, 0, sizeof miss_base);
     memset(last_start, 0, sizeof last_start);
     R.host_alive = false; /* the soak's host sends its own heartbeats */

@@ -37,11 +37,11 @@ static void stop_here(uint32_t ms)
     rig_cmd(&R, PM_STOP);
     rig_run(&R, 1);
     /* (Or, at the very end, the last setpoints were already stepping out: nothing to stop.) */
-    if (R.fw.state != FW_STATE_STOPPING && !(R.fw.state == FW_STATE_MOVING && R.fw.src == FW_SRC_NONE))
-        fail_msg("STOP %u ms in: state %d, src %d, tau %.4f", ms, R.fw.state, R.fw.src, (double)R.fw.tau);
+    if (fw_state_of(R.fw) != FW_STATE_STOPPING && !(fw_state_of(R.fw) == FW_STATE_MOVING && rig_now(&R).src == FW_SRC_NONE))
+        fail_msg("STOP %u ms in: state %d, src %d, tau %.4f", ms, fw_state_of(R.fw), rig_now(&R).src, (double)rig_now(&R).tau);
     if (!rig_until(&R, FW_STATE_IDLE, 10000))
-        fail_msg("STOP %u ms in: state %d, fault %d", ms, R.fw.state, R.fw.fault);
-    if (homing && R.fw.homed)
+        fail_msg("STOP %u ms in: state %d, fault %d", ms, fw_state_of(R.fw), fw_fault_of(R.fw));
+    if (homing && fw_homed_of(R.fw))
         fail_msg("STOP %u ms in: a homing stopped short set a zero", ms);
     R = here;
 }
@@ -53,11 +53,11 @@ static void test_stop_anywhere_in_homing(void **state)
     rig_cmd(&R, PM_ENABLE);
     rig_run(&R, 10);
     rig_cmd(&R, PM_HOME);
-    for (int t = 0; t < 60000 && R.fw.src != FW_SRC_JOINT; ++t)
+    for (int t = 0; t < 60000 && rig_now(&R).src != FW_SRC_JOINT; ++t)
         rig_run(&R, 1);
-    assert_int_equal(R.fw.src, FW_SRC_JOINT);
+    assert_int_equal(rig_now(&R).src, FW_SRC_JOINT);
     homing = true;
-    const uint32_t T = (uint32_t)(R.fw.joint.prof.T * 1000.0), Ta = (uint32_t)(R.fw.joint.prof.Ta * 1000.0);
+    const uint32_t T = (uint32_t)(rig_now(&R).joint_T * 1000.0), Ta = (uint32_t)(rig_now(&R).joint_Ta * 1000.0);
     unsigned stops = 0;
     for (uint32_t ms = 0, step; ms < T; ms += step) {
         stop_here(ms);
@@ -81,13 +81,13 @@ static void test_stop_anywhere_in_a_blend(void **state)
     rig_run(&R, 300);
     rig_move(&R, b, 1500);
     rig_run(&R, 1);
-    assert_true(R.fw.has_next);
-    const uint32_t k0 = R.fw.blend_k0, T = (uint32_t)((R.fw.blend_k0 / 1000.0 + R.fw.next.prof.T) * 1000.0) -
-                                             R.fw.segments_run;
-    assert_true(k0 < R.fw.move.segments); /* blended, not back to back */
+    assert_true(rig_now(&R).has_next);
+    const uint32_t k0 = rig_now(&R).blend_k0, T = (uint32_t)((rig_now(&R).blend_k0 / 1000.0 + rig_now(&R).next.prof.T) * 1000.0) -
+                                             rig_now(&R).segments_run;
+    assert_true(k0 < rig_now(&R).move.segments); /* blended, not back to back */
     unsigned stops = 0, in_blend = 0;
     for (uint32_t ms = 0, step; ms < T; ms += step) {
-        const bool overlap = R.fw.has_next && R.fw.tau >= k0 / 1000.0; /* both moves running */
+        const bool overlap = rig_now(&R).has_next && rig_now(&R).tau >= k0 / 1000.0; /* both moves running */
         in_blend += overlap;
         stop_here(ms);
         ++stops;
@@ -125,8 +125,8 @@ static void test_stop_anywhere_in_moves(void **state)
         const uint8_t s = rig_move(&R, moves[i].to, moves[i].ms);
         rig_run(&R, 1);
         assert_int_equal(rig_answer(&R, from, proto_table[PM_MOVE_COMMIT].function, s, NULL), 'a');
-        const uint32_t T = (uint32_t)(R.fw.move.prof.T * 1000.0);
-        print_message("move %zu: %.3f s, ramps of %.3f s\n", i + 1, (double)R.fw.move.prof.T, (double)R.fw.move.prof.Ta);
+        const uint32_t T = (uint32_t)(rig_now(&R).move.prof.T * 1000.0);
+        print_message("move %zu: %.3f s, ramps of %.3f s\n", i + 1, (double)rig_now(&R).move.prof.T, (double)rig_now(&R).move.prof.Ta);
         for (uint32_t ms = 0, step; ms < T; ms += step) {
             stop_here(ms);
             ++stops;
@@ -165,12 +165,12 @@ typedef struct {
 /* The host: rows as the queue has room, up to s->upto. */
 static void stream(sim_rig *r, streamer *s)
 {
-    while (s->sent < s->upto && fw_traj_depth(&r->fw.traj) + 2u < FW_TRAJ_CAPACITY &&
-           (s->sent == 0 || r->fw.src == FW_SRC_TRAJ || r->fw.state == FW_STATE_IDLE)) {
+    while (s->sent < s->upto && rig_now(r).traj_free > 2u &&
+           (s->sent == 0 || rig_now(r).src == FW_SRC_TRAJ || fw_state_of(r->fw) == FW_STATE_IDLE)) {
         const int i = s->sent + 1;
         double pose[6];
         for (int k = 0; k < 6; ++k)
-            pose[k] = r->fw.geom.home_pose[k];
+            pose[k] = fw_geometry_of(r->fw)->home_pose[k];
         pose[traj_axis] += traj_x(s->a, 0.01 * i);
         const uint8_t q = r->seq++;
         if (i == 1)
@@ -221,7 +221,7 @@ static double stop_peak(void)
     rig_cmd(&R, PM_STOP);
     double peak = 0.0;
     const double spm = R.plant.cfg.steps_per_m;
-    for (int ms = 0; ms < 10000 && R.fw.state != FW_STATE_IDLE; ++ms) {
+    for (int ms = 0; ms < 10000 && fw_state_of(R.fw) != FW_STATE_IDLE; ++ms) {
         rig_run(&R, 1);
         memmove(hist[1], hist[0], sizeof hist - sizeof hist[0]);
         for (int k = 0; k < 6; ++k) {
@@ -267,16 +267,16 @@ static void test_stop_anywhere_in_a_trajectory(void **state)
         for (uint32_t at = 0; at < 360; at += at < 80 ? 1 : 10) {
             R = home;
             streamer s = {0, 0, a, TRAJ_ROWS};
-            for (int ms = 0; ms < 2000 && !(R.fw.src == FW_SRC_TRAJ && R.fw.run.clock); ++ms) {
+            for (int ms = 0; ms < 2000 && !(rig_now(&R).src == FW_SRC_TRAJ && rig_now(&R).run_clock); ++ms) {
                 stream(&R, &s);
                 rig_run(&R, 1);
             }
-            assert_int_equal(R.fw.src, FW_SRC_TRAJ);
-            for (uint32_t ms = 0; ms < at && R.fw.src == FW_SRC_TRAJ; ++ms) {
+            assert_int_equal(rig_now(&R).src, FW_SRC_TRAJ);
+            for (uint32_t ms = 0; ms < at && rig_now(&R).src == FW_SRC_TRAJ; ++ms) {
                 stream(&R, &s);
                 rig_run(&R, 1);
             }
-            if (R.fw.src != FW_SRC_TRAJ)
+            if (rig_now(&R).src != FW_SRC_TRAJ)
                 break;
             const double peak = stop_peak();
             if (peak > worst)
@@ -288,11 +288,11 @@ static void test_stop_anywhere_in_a_trajectory(void **state)
         for (int upto = 20; upto < TRAJ_ROWS; ++upto) { /* fewer than 20 rows (0.2 s) never start */
             R = home;
             streamer s = {0, 0, a, upto};
-            for (int ms = 0; ms < 3000 && R.fw.state != FW_STATE_FAULT; ++ms) {
+            for (int ms = 0; ms < 3000 && fw_state_of(R.fw) != FW_STATE_FAULT; ++ms) {
                 stream(&R, &s);
                 rig_run(&R, 1);
             }
-            if (R.fw.state == FW_STATE_FAULT && R.fw.fault == FW_FAULT_UNDERRUN)
+            if (fw_state_of(R.fw) == FW_STATE_FAULT && fw_fault_of(R.fw) == FW_FAULT_UNDERRUN)
                 ++underruns;
         }
         print_message("%s at %.3f %s: %u stops (at most %.3f of slide_amax, the path's own acceleration "

@@ -19,10 +19,10 @@ read_state() {
   timeout 30 "$gdb" -batch -nx -ex "set pagination off" -ex "file $elf" -ex "target remote 127.0.0.1:$port" \
     -ex 'printf "control_calls=%u\n", tse_board.control_calls' \
     -ex 'printf "step_irqs=%u\n", tse_board.ticker.steps' \
-    -ex 'printf "late=%u\n", tse_board.ticker.late' \
+    -ex 'printf "control_irqs=%u\n", tse_board.ticker.controls' \
     -ex 'printf "boot_faults=%u\n", tse_board.boot_faults' \
-    -ex 'printf "state=%d\n", (int)tse_board.fw.state' \
-    -ex 'printf "fault=%d\n", (int)tse_board.fw.fault' \
+    -ex 'printf "state=%d\n", (int)tse_board.state' \
+    -ex 'printf "fault=%d\n", (int)tse_board.fault' \
     -ex 'printf "pc=%#x\n", $pc' \
     -ex 'printf "where=%s\n", tse_fault_record.where ? tse_fault_record.where : "none"' \
     -ex detach 2>/dev/null | grep -E '^[a-z_]+='
@@ -42,7 +42,7 @@ check() {
 }
 c1=$(val "$first" control_calls); c2=$(val "$second" control_calls)
 s1=$(val "$first" step_irqs); s2=$(val "$second" step_irqs)
-check "the main loop made control calls ($c1, then $c2)" '[ "${c1:-0}" -gt 100 ] && [ "${c2:-0}" -gt "$c1" ]'
+check "the control interrupt made control calls ($c1, then $c2)" '[ "${c1:-0}" -gt 100 ] && [ "${c2:-0}" -gt "$c1" ]'
 check "the step interrupt fires ($s1, then $s2)" '[ "${s1:-0}" -gt 100 ] && [ "${s2:-0}" -gt "$s1" ]'
 faults=$(val "$second" boot_faults)
 # QEMU models no RCC: the crystal never answers, which the board must report, not hang on.

@@ -10,9 +10,9 @@
  *   which the controller does not know before homing), homing switches pressed for
  *   s <= home_sw_k (the parameter values the script set, compared in integers), the shared ENABLE,
  *   the e-stop input, a microsecond clock;
- * - the run loop of fake_hal.c on the host: every millisecond fw_poll, fw_control_tick, then 200
- *   fw_step_tick; the e-stop input's interrupt (EXTI on the board) calls fw_estop_isr between two
- *   step ticks.
+ * - one context for all (fw/runtime.h): every millisecond fw_period_start (the thread's poll,
+ *   then the control tick), then 200 fw_step_tick; the e-stop input's interrupt (EXTI on the
+ *   board) calls fw_estop_isr between two step ticks.
  *
  * Script: status every 10 ms and two homing switches moved (PARAM_SET, while disabled); ENABLE;
  * HOME (slides starting above, on and below-but-near their switches); a move to a pose (ACK with
@@ -30,6 +30,7 @@
 #include "fw/controller.h"
 #include "fw/params.h"
 #include "fw/proto.h"
+#include "fw/runtime.h"
 #include "kin_table.h"
 #include "target_test.h"
 
@@ -184,7 +185,8 @@ static struct {
     uint8_t seq;
 } host;
 
-static fw_controller C;
+static fw_controller_mem C_mem;
+static fw_controller *C;
 
 static void host_send(proto_msg m, const int32_t *v)
 {
@@ -313,19 +315,18 @@ static void run(uint32_t ms)
             const int32_t hb[1] = {(int32_t)(ms_now / 100 % 256)};
             host_send(PM_HOST_HEARTBEAT, hb);
         }
-        fw_poll(&C);
-        fw_control_tick(&C);
+        fw_period_start(C, NULL, NULL);
         for (uint32_t t = 0; t < TICKS; ++t) {
             if (estop_tick >= 0 && (long)t == estop_tick) {
                 /* the e-stop circuit opens: its interrupt preempts between two step ticks */
                 plant.estop_open = true;
-                fw_estop_isr(&C);
+                fw_estop_isr(C);
                 pulses_at_estop = plant.pulses;
                 estop_fired = true;
                 estop_tick = -1;
                 mon.on = false; /* an e-stop may stop dead */
             }
-            fw_step_tick(&C);
+            fw_step_tick(C);
         }
         plant.now_us += 1000000u / SEGMENT_HZ;
         ++ms_now;
@@ -428,8 +429,9 @@ static void boot_and_params(void)
     hal.inputs = (hal_inputs){0, in_limits, in_estop};
     hal.clock = (hal_clock){0, clk_now};
     hal.storage = (hal_storage){0, sto_load, sto_save};
-    const fw_config cfg = {NODE, SEGMENT_HZ, STEP_HZ, true}; /* as the board runs it */
-    TT_CHECK(fw_init(&C, &hal, &cfg) == 0);
+    const fw_config cfg = {NODE, SEGMENT_HZ, STEP_HZ, NULL, NULL};
+    C = fw_init(&C_mem, &hal, &cfg);
+    TT_CHECK(C != NULL);
     host.seq = 1;
     run(5);
     TT_CHECK(host.statuses > 0 && host.state == FW_STATE_DISABLED && host.fault == FW_FAULT_NONE);
@@ -478,7 +480,7 @@ static void enable_and_home(void)
     /* Every slide went down onto its switch, and the zero is true: the controller's count of each
      * slide is the plant's own position. */
     int32_t count[6];
-    stepgen_positions(&C.sg, count);
+    stepgen_positions(fw_stepgen_of(C), count);
     for (int k = 0; k < 6; ++k) {
         TT_CHECKF((int64_t)plant.min_steps[k] * 1000000 <= (int64_t)plant.home_sw_um[k] * plant.spm,
                   "slide %d never pressed its switch\n", k + 1);

@@ -3,7 +3,8 @@
  * is not straight for the plate, and between two valid ends it may pass poses the workspace's
  * margins refuse, or no pose at all (issue 24: home_sw_1 = 0.475 m, the others 0.2 m).  So it is
  * validated, as a move is, before the parameter check takes a set (fw_params_judge, from the
- * switches themselves) and before homing starts it (from where the slides are).
+ * switches themselves) and before homing starts it (from where the slides are; in the controller's
+ * thread, too long for the control tick: homing.h).
  *
  * The check: the plate's pose from the slides by forward kinematics, which is a pose only where
  * tse_ik takes it back with both margins, at FW_JOINT_PATH_SAMPLES + 1 points evenly spaced along

@@ -27,7 +27,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "fw/move.h"
+#include "fw/path.h"
 #include "fw/slide_check.h"
 
 typedef struct {
@@ -64,10 +64,5 @@ int fw_validate(const fw_move *mv, const tse_geometry *g, const fw_limits *lim, 
 /* One of the two above. */
 typedef int (*fw_validator)(const fw_move *mv, const tse_geometry *g, const fw_limits *lim,
                             const tse_real q_from[6], fw_validation *v, fw_plan_result *res);
-
-/* fw_move_plan (fw/move.h) with the validation given: the tests compare the two. */
-int fw_move_plan_by(fw_move *mv, const tse_geometry *g, const fw_limits *lim, const tse_real from[6],
-                    const tse_real to[6], fw_move_kind kind, tse_real value, const tse_real q_from[6],
-                    fw_plan_result *res, fw_validator validate);
 
 #endif

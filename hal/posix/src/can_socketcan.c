@@ -15,6 +15,10 @@
 int posix_can_open(posix_can *c, const char *iface, uint8_t node)
 {
     memset(c, 0, sizeof *c);
+    atomic_init(&c->bus_off, false);
+    atomic_init(&c->error_passive, false);
+    atomic_init(&c->bus_off_events, 0u);
+    atomic_init(&c->rx_overruns, 0u);
     c->fd = socket(PF_CAN, SOCK_RAW, CAN_RAW);
     if (c->fd < 0)
         return -1;
@@ -77,16 +81,17 @@ static int can_receive(void *ctx, hal_can_frame *f)
         if (n != (ssize_t)sizeof fr)
             return 0;
         if (fr.can_id & CAN_ERR_FLAG) {
-            if ((fr.can_id & CAN_ERR_BUSOFF) && !c->state.bus_off) {
-                c->state.bus_off = true;
-                ++c->state.bus_off_events;
+            /* The count first: a tick that sees bus_off already sees the event. */
+            if ((fr.can_id & CAN_ERR_BUSOFF) && !atomic_load(&c->bus_off)) {
+                atomic_fetch_add(&c->bus_off_events, 1u);
+                atomic_store(&c->bus_off, true);
             }
             if (fr.can_id & CAN_ERR_RESTARTED)
-                c->state.bus_off = false;
+                atomic_store(&c->bus_off, false);
             if ((fr.can_id & CAN_ERR_CRTL) && (fr.data[1] & (CAN_ERR_CRTL_RX_PASSIVE | CAN_ERR_CRTL_TX_PASSIVE)))
-                c->state.error_passive = true;
+                atomic_store(&c->error_passive, true);
             if ((fr.can_id & CAN_ERR_CRTL) && (fr.data[1] & CAN_ERR_CRTL_RX_OVERFLOW))
-                ++c->state.rx_overruns;
+                atomic_fetch_add(&c->rx_overruns, 1u);
             continue;
         }
         if (fr.can_id & (CAN_EFF_FLAG | CAN_RTR_FLAG))
@@ -100,7 +105,12 @@ static int can_receive(void *ctx, hal_can_frame *f)
 
 static void can_state(void *ctx, hal_can_state *st)
 {
-    *st = ((posix_can *)ctx)->state;
+    posix_can *c = ctx;
+    memset(st, 0, sizeof *st);
+    st->bus_off_events = atomic_load(&c->bus_off_events);
+    st->bus_off = atomic_load(&c->bus_off);
+    st->error_passive = atomic_load(&c->error_passive);
+    st->rx_overruns = atomic_load(&c->rx_overruns);
 }
 
 hal_can posix_can_hal(posix_can *c)

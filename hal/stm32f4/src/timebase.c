@@ -1,5 +1,7 @@
 /* The microsecond clock: TIM5 free-running at 1 MHz, its 32 bits extended in software. */
 #include "hal_stm32f4/board_io.h"
+#include "hal_stm32f4/pinmap.h"
+#include "hal_stm32f4/regs_core.h"
 #include "hal_stm32f4/regs_tim.h"
 
 static struct {
@@ -10,11 +12,16 @@ static struct {
 static uint64_t now_us(void *ctx)
 {
     (void)ctx;
+    /* The main loop and the control interrupt both extend the counter: the control level and
+     * below are masked for these few instructions (the step and e-stop interrupts never call it). */
+    const uint32_t saved = tse_basepri_raise(PRIO_CONTROL);
     const uint32_t c = TSE_TIM5->CNT;
     if (c < tb.last)
         tb.high += 1ull << 32;
     tb.last = c;
-    return tb.high | c;
+    const uint64_t t = tb.high | c;
+    tse_basepri_restore(saved);
+    return t;
 }
 
 hal_clock board_clock_hal(uint32_t timer_hz)

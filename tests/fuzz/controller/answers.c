@@ -88,7 +88,7 @@ static void check_target(const oracle_model *o, const tse_real *to)
  * no trajectory running.  The refusal's field in *field. */
 static fw_reason row_place(const oracle_model *o, bool ended_only, int64_t *field)
 {
-    const snapshot *b = &o->before;
+    const fw_inspection *b = &o->before.in;
     const uint8_t id = (uint8_t)o->wf.v[3];
     *field = 0;
     if (o->wf.v[2] & PROTO_TRAJ_FIRST)
@@ -123,22 +123,24 @@ static void judge_commit(oracle_model *o, const rig *r, const oracle_outputs *ou
     }
     bool spends = false;
     if (out->n_ack) {
-        FUZZ_CHECK(complete && fresh && o->before.homed);
+        FUZZ_CHECK(complete && fresh && o->before.in.homed);
         spends = true;
-        const fw_controller *c = &r->c;
+        fw_inspection in;
+        fw_inspect(r->c, &in);
+        const fw_inspection *c = &in;
         if (o->wf.msg == PM_MOVE_COMMIT) {
-            check_target(o, o->before.state == FW_STATE_MOVING ? c->next.to : c->move.to);
+            check_target(o, o->before.in.state == FW_STATE_MOVING ? c->next.to : c->move.to);
             /* The planned duration is at least the one asked for. */
             if (o->wf.v[1] == 0)
                 FUZZ_CHECK(out->ack[4] + 1 >= o->wf.v[2]);
         } else {
-            check_target(o, c->traj.tail.pose);
+            check_target(o, c->traj_tail);
             /* A trajectory starts with its first row, at rest; the others join it while it runs. */
-            FUZZ_CHECK(first == (o->before.state == FW_STATE_IDLE));
+            FUZZ_CHECK(first == (o->before.in.state == FW_STATE_IDLE));
             if (first)
                 o->traj_running = true;
         }
-        if (o->before.state == FW_STATE_IDLE)
+        if (o->before.in.state == FW_STATE_IDLE)
             FUZZ_CHECK(c->state == FW_STATE_MOVING);
     } else {
         switch (out->rej[2]) {
@@ -149,20 +151,20 @@ static void judge_commit(oracle_model *o, const rig *r, const oracle_outputs *ou
             FUZZ_CHECK(!fresh);
             break;
         case FW_REASON_NOT_HOMED:
-            FUZZ_CHECK(!o->before.homed);
+            FUZZ_CHECK(!o->before.in.homed);
             break;
         case FW_REASON_KINEMATICS:
         case FW_REASON_TIMING:
         case FW_REASON_RANGE:
         case FW_REASON_TOO_LONG:
             /* Refused for its content: the content was there to refuse. */
-            FUZZ_CHECK(complete && fresh && o->before.homed);
+            FUZZ_CHECK(complete && fresh && o->before.in.homed);
             spends = true;
             break;
         case FW_REASON_QUEUE_FULL:
             break;
         case FW_REASON_STATE: /* the state table accepts it, but not in every kind of motion */
-            FUZZ_CHECK(o->before.state == FW_STATE_MOVING);
+            FUZZ_CHECK(o->before.in.state == FW_STATE_MOVING);
             break;
         case FW_REASON_ORDER:
         case FW_REASON_ENDED:
@@ -243,9 +245,9 @@ static void judge_params(oracle_model *o, rig *r, const oracle_outputs *out, boo
     const bool changed = o->params.v[id] != value;
     o->params.v[id] = (int32_t)value;
     if (rezeroes((unsigned)id) && changed)
-        FUZZ_CHECK(!r->c.homed);
+        FUZZ_CHECK(!fw_homed_of(r->c));
     else if (!hooked) /* (an e-stop drops the zero) */
-        FUZZ_CHECK(r->c.homed == o->before.homed);
+        FUZZ_CHECK(fw_homed_of(r->c) == o->before.in.homed);
     rig_plant_follow(r, &o->params);
     plant_check_reset(r, &o->params);
 }
@@ -254,8 +256,10 @@ static void judge_params(oracle_model *o, rig *r, const oracle_outputs *out, boo
  * what it tells the model. */
 static void judge_effect(oracle_model *o, rig *r, proto_msg m, bool strict)
 {
-    const fw_controller *c = &r->c;
-    const fw_state was = o->before.state, s = c->state;
+    fw_inspection in;
+    fw_inspect(r->c, &in);
+    const fw_inspection *c = &in;
+    const fw_state was = o->before.in.state, s = c->state;
     if (m == PM_ENABLE)
         o->last_alive_us = r->f.now_us;
     if (m == PM_STOP)
@@ -295,7 +299,7 @@ static void judge_command(oracle_model *o, rig *r, const oracle_outputs *out, bo
 {
     const wire_frame *w = &o->wf;
     const proto_msg m = w->msg;
-    const fw_state was = o->before.state;
+    const fw_state was = o->before.in.state;
     if (m == PM_HOST_HEARTBEAT) {
         FUZZ_CHECK(out->n_ack + out->n_rej + out->n_pv == 0);
         o->last_alive_us = r->f.now_us;
@@ -371,7 +375,7 @@ void oracle_judge_answers(oracle_model *o, rig *r, const oracle_outputs *out, bo
         /* Not ours, or a broadcast: nothing answers (only ESTOP and STOP are honoured). */
         FUZZ_CHECK(out->n_ack + out->n_rej + out->n_pv == 0);
         if (w->kind == WIRE_BROADCAST && w->well_formed && !hooked &&
-            (w->msg == PM_ESTOP || (w->msg == PM_STOP && o->before.state != FW_STATE_BOOT)))
+            (w->msg == PM_ESTOP || (w->msg == PM_STOP && o->before.in.state != FW_STATE_BOOT)))
             judge_effect(o, r, w->msg, true);
         break;
     case WIRE_UNKNOWN:

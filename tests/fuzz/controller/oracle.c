@@ -69,18 +69,20 @@ static void check_queue_fields(int64_t depth, int64_t free_)
 
 static void check_status(const rig *r, const int64_t *v)
 {
-    const fw_controller *c = &r->c;
+    fw_inspection in;
+    fw_inspect(r->c, &in);
+    const fw_inspection *c = &in;
     FUZZ_CHECK(v[0] == c->state && v[1] == c->fault);
     const int64_t flags = v[2];
     FUZZ_CHECK((flags & 0xE0) == 0);
     FUZZ_CHECK(((flags & 1) != 0) == c->homed);
     if (!o.estop_cut) { /* an interrupt inside the STATUS's own reads makes these a moment old */
         FUZZ_CHECK(((flags & 2) != 0) == r->f.enabled);
-        FUZZ_CHECK(((flags & 4) != 0) == r->f.estop_open);
+        FUZZ_CHECK(((flags & 4) != 0) == o.estop_read);
     }
-    FUZZ_CHECK(((flags & 16) != 0) == r->f.can_state.error_passive);
+    FUZZ_CHECK(((flags & 16) != 0) == o.passive_read);
     check_queue_fields(v[3], v[4]);
-    FUZZ_CHECK(v[3] == fw_traj_depth(&c->traj));
+    FUZZ_CHECK(v[3] == c->traj_depth);
     if (o.any_commit)
         FUZZ_CHECK(v[5] == o.last_commit);
     if (o.status_seen)
@@ -89,19 +91,20 @@ static void check_status(const rig *r, const int64_t *v)
     o.status_counter = (uint16_t)v[6];
 }
 
-/* SLIDES: the steps emitted, in nanometres; once homed they are the plant's true positions. */
+/* SLIDES: the steps emitted as of the last control tick (what it published), in nanometres; once
+ * homed they are the plant's true positions then. */
 static void check_slides(const rig *r, int first, const int64_t *v)
 {
-    if (!r->c.homed || o.estop_cut)
+    if (!fw_homed_of(r->c) || o.estop_cut)
         return;
     const double spm = (double)o.params.v[FP_STEPS_PER_M];
     for (int i = 0; i < 2; ++i) {
         if ((o.zero_suspect >> (first + i)) & 1u)
             continue;
-        const double nm = (double)r->f.steps[first + i] * 1e9 / spm;
+        const double nm = (double)o.steps_read[first + i] * 1e9 / spm;
         if (trace && fabs((double)v[i] - nm) > 1.0 + 1e-6 * fabs(nm))
             fprintf(stderr, "slide %d: SLIDES %lld nm, plant %d steps (%.0f nm)\n", first + i,
-                    (long long)v[i], (int)r->f.steps[first + i], nm);
+                    (long long)v[i], (int)o.steps_read[first + i], nm);
         FUZZ_CHECK(fabs((double)v[i] - nm) <= 1.0 + 1e-6 * fabs(nm));
     }
 }
@@ -153,14 +156,17 @@ static void read_outputs(rig *r, oracle_outputs *out)
 }
 
 /* What the controller promises whenever it is looked at. */
-/* ran: a poll or control tick has just run (not only an input changed). */
+/* ran: a control tick has just run (not a poll, nor only an input changed). */
 static void observe(rig *r, bool ran)
 {
-    const fw_controller *c = &r->c;
+    fw_inspection in;
+    fw_inspect(r->c, &in);
+    const fw_inspection *c = &in;
     const fw_state s = c->state;
     FUZZ_CHECK((unsigned)s < FW_STATE_COUNT && s != FW_STATE_BOOT);
-    /* An e-stop interrupt before this poll or tick began has been completed by it, first thing
-     * (controller.h: fw_poll, fw_control_tick and fw_handle_frame complete it). */
+    /* An e-stop interrupt before this control tick began has been completed by it, first thing
+     * (fw/runtime.h: the tick completes it; the thread's work leaves it to the tick, but for a
+     * command it hands over, which the tick's side completes first, in place). */
     if (ran) {
         if (o.estop_cut && !o.cut_inside)
             FUZZ_CHECK(s == FW_STATE_ESTOP);
@@ -171,7 +177,7 @@ static void observe(rig *r, bool ran)
             fprintf(stderr, "%9.3f ms state %s -> %s (fault %s, pending %s, overruns %u)\n",
                     (double)r->f.now_us / 1000.0, proto_enum_name(proto_state_names, o.state),
                     proto_enum_name(proto_state_names, s), proto_enum_name(proto_fault_names, c->fault),
-                    proto_enum_name(proto_fault_names, c->pending_fault), (unsigned)c->sg.overruns);
+                    proto_enum_name(proto_fault_names, c->pending_fault), (unsigned)c->sg_overruns);
         FUZZ_CHECK(next_states[o.state] & BIT(s));
         summary_state(o.state, s);
         if (s == FW_STATE_FAULT || s == FW_STATE_ESTOP)
@@ -203,7 +209,7 @@ static void observe(rig *r, bool ran)
         FUZZ_CHECK(c->drives_on == r->f.enabled);
     /* At rest no trajectory point waits (a STOP's promise, and a finished or dropped one's). */
     if (s != FW_STATE_MOVING && s != FW_STATE_STOPPING)
-        FUZZ_CHECK(fw_traj_depth(&c->traj) == 0);
+        FUZZ_CHECK(c->traj_depth == 0);
     /* The parameters are what the answers said, and the drivers are programmed with them. */
     FUZZ_CHECK(memcmp(&c->params, &o.params, sizeof o.params) == 0);
     FUZZ_CHECK(r->f.pulse_ns == (uint32_t)o.params.v[FP_STEP_PULSE_NS]);
@@ -211,7 +217,7 @@ static void observe(rig *r, bool ran)
     /* The fake's step interrupt never runs late, so an overrun is the controller asking its step
      * generator for more than the generator can give (stepgen.h: the planner keeps every segment
      * within capacity): with any parameter set the controller accepted, none may happen. */
-    FUZZ_CHECK(c->sg.overruns == 0);
+    FUZZ_CHECK(c->sg_overruns == 0);
     FUZZ_CHECK(c->fault != FW_FAULT_STEP_OVERRUN && c->pending_fault != FW_FAULT_STEP_OVERRUN);
     /* The watchdog: a watchdog fault only after silence past the timeout (docs/protocol.md),
      * judged when it is raised (pending while the robot is brought to rest, or latched at once). */
@@ -250,8 +256,9 @@ void oracle_reboot(rig *r)
     /* A restart loads what PARAM_SAVE stored (the fixture's record before any). */
     o.saved = o.params = saved;
     o.state = FW_STATE_DISABLED;
-    FUZZ_CHECK(r->c.state == FW_STATE_DISABLED);
-    FUZZ_CHECK(!r->c.homed);
+    FUZZ_CHECK(fw_state_of(r->c) == FW_STATE_DISABLED);
+    o.estop_read = o.passive_read = false; /* no control tick has read them yet */
+    FUZZ_CHECK(!fw_homed_of(r->c));
     rig_plant_follow(r, &o.params);
     plant_check_reset(r, &o.params);
     plant_check_zero_suspect(0);
@@ -289,7 +296,7 @@ void oracle_after_frame(rig *r)
             FUZZ_CHECK(!"a refused frame changed the controller");
         }
     }
-    observe(r, true);
+    observe(r, false);
 }
 
 void oracle_after_poll(rig *r)
@@ -298,12 +305,12 @@ void oracle_after_poll(rig *r)
     read_outputs(r, &out);
     /* No frame, no answer: an answer here would be a second one to an earlier frame. */
     FUZZ_CHECK(out.n_ack + out.n_rej + out.n_pv == 0);
-    observe(r, true);
+    observe(r, false);
 }
 
 void oracle_event(rig *r)
 {
-    if (r->c.state == FW_STATE_HOMING)
+    if (fw_state_of(r->c) == FW_STATE_HOMING)
         suspect_zero(r);
     oracle_outputs out;
     read_outputs(r, &out);
@@ -313,10 +320,15 @@ void oracle_event(rig *r)
 
 void oracle_after_control(rig *r)
 {
-    const fw_controller *c = &r->c;
+    fw_inspection in;
+    fw_inspect(r->c, &in);
+    const fw_inspection *c = &in;
     /* The control tick supervises first: an e-stop input open before it began has put the
      * controller in ESTOP by now (docs/controller.md, "E-stop": it cuts stepping at once). */
     FUZZ_CHECK(!r->f.estop_open || o.cut_inside || c->state == FW_STATE_ESTOP);
+    o.estop_read = r->f.estop_open;
+    o.passive_read = r->f.can_state.error_passive;
+    memcpy(o.steps_read, r->f.steps, sizeof o.steps_read);
     observe(r, true);
     /* Silence past the watchdog timeout, one control period to notice: the robot is being
      * stopped or the fault latched (docs/protocol.md, HOST_HEARTBEAT). */
@@ -327,8 +339,10 @@ void oracle_after_control(rig *r)
 
 void oracle_segment(rig *r)
 {
-    if (trace > 1 && (r->c.state == FW_STATE_MOVING || r->c.state == FW_STATE_STOPPING)) {
-        const fw_controller *c = &r->c;
+    if (trace > 1 && (fw_state_of(r->c) == FW_STATE_MOVING || fw_state_of(r->c) == FW_STATE_STOPPING)) {
+        fw_inspection in;
+        fw_inspect(r->c, &in);
+        const fw_inspection *c = &in;
         fprintf(stderr, "%9.3f ms steps", (double)r->f.now_us / 1000.0);
         for (int k = 0; k < 6; ++k)
             fprintf(stderr, " %d", (int)r->f.steps[k]);

@@ -18,6 +18,9 @@ typedef struct oracle_model {
     bool homed;
     bool estop_cut;             /* the e-stop interrupt fired, ESTOP not yet entered */
     bool cut_inside;            /* ... inside the work that runs now, which may not complete it */
+    bool estop_read;            /* the e-stop input as the last control tick read it (STATUS says it) */
+    bool passive_read;          /* the CAN controller's error-passive state, likewise */
+    int32_t steps_read[6];      /* the plant's steps at the last control tick (SLIDES says them) */
     /* The staged pose as docs/protocol.md's staging rules and the refusals make it. */
     uint8_t stage_seq, stage_have;
     int32_t stage_v[6];

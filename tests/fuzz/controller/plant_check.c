@@ -39,7 +39,7 @@ void plant_check_dir(const rig *r, uint8_t forward_mask)
 
 void plant_check_pulse(const rig *r, uint8_t mask, bool estop_cut)
 {
-    const fw_state s = r->c.state;
+    const fw_state s = fw_state_of(r->c);
     /* docs/controller.md ("States", "E-stop"): stepping only moves a robot that is homing, moving
      * or stopping, through energised drives; an e-stop cuts it at once, from the interrupt on. */
     FUZZ_CHECK((mask & ~0x3Fu) == 0);
@@ -76,7 +76,7 @@ void plant_check_stroke(const rig *r)
      * accepts).  What homing must respect is checked on every tick all the same: the speed and
      * the step rules below, and the stroke from the moment the controller says it is homed (the
      * move to the home pose has ended by then, so the home pose's slides are checked too). */
-    if (!r->c.homed)
+    if (!fw_homed_of(r->c))
         return;
     const int64_t spm = pc.p.v[FP_STEPS_PER_M];
     for (int k = 0; k < 6; ++k) {

@@ -12,7 +12,7 @@ static void fire_estop_isr(rig *r, bool inside)
 {
     r->f.estop_open = true;
     oracle_estop_isr(r, inside);
-    fw_estop_isr(&r->c);
+    fw_estop_isr(r->c);
     if (inside && r->in_feed)
         r->hook_fired_in_feed = true;
 }
@@ -79,7 +79,7 @@ static void fixture_params(rig_fixture fx, fw_param_set *p)
 void rig_start(rig *r, rig_fixture fixture)
 {
     /* The fake (most of the rig) is cleared by its own init. */
-    memset(&r->c, 0, sizeof *r - offsetof(rig, c));
+    memset(&r->mem, 0, sizeof *r - offsetof(rig, mem));
     fake_hal_init(&r->f, &r->hal);
     r->inner = r->hal.stepper;
     r->hal.stepper = (hal_stepper){r, w_set_dir, w_pulse, w_enable, w_timing};
@@ -93,8 +93,7 @@ void rig_start(rig *r, rig_fixture fixture)
     const bool fast = fixture != RIG_HARNESS;
     if (fast)
         r->f.storage_len = (int)fw_params_serialize(&p, r->f.storage, sizeof r->f.storage);
-    r->cfg = (fw_config){fixture == RIG_FAST_BOARD ? 15 : 1, 1000, fast ? 10000 : 100000,
-                         fixture == RIG_FAST_BOARD};
+    r->cfg = (fw_config){fixture == RIG_FAST_BOARD ? 15 : 1, 1000, fast ? 10000 : 100000, NULL, NULL};
     /* The plant's coordinates are the parameters' from the start (the fake's default switches are
      * the default set's). */
     r->plant_params = p;
@@ -106,14 +105,15 @@ void rig_start(rig *r, rig_fixture fixture)
         r->f.steps[k] = r->f.switch_at[k] + (fixture == RIG_FAST_ON_SWITCH ? -off : off);
     }
 
-    FUZZ_CHECK(fw_init(&r->c, &r->hal, &r->cfg) == 0);
+    r->c = fw_init(&r->mem, &r->hal, &r->cfg);
+    FUZZ_CHECK(r->c != NULL);
     r->ticks_per_segment = r->cfg.step_hz / r->cfg.segment_hz;
     r->us_per_tick = 1000000u / r->cfg.step_hz;
     r->cap_ticks = (uint64_t)(fast ? RIG_CAP_S_FAST : RIG_CAP_S_HARNESS) * r->cfg.step_hz;
     r->host_alive = true;
     r->seq = 1;
     for (int k = 0; k < 6; ++k)
-        r->home_um[k] = (int32_t)llround(r->c.geom.home_pose[k] * 1e6);
+        r->home_um[k] = (int32_t)llround(fw_geometry_of(r->c)->home_pose[k] * 1e6);
     oracle_start(r, fast ? &p : NULL);
 }
 
@@ -126,13 +126,13 @@ void rig_feed(rig *r, const hal_can_frame *fr)
 {
     /* Flush what is due (STATUS, telemetry) first, so that the frame's poll sends only what the
      * frame causes. */
-    fw_poll(&r->c);
+    fw_poll(r->c);
     oracle_after_poll(r);
     oracle_before_frame(r, fr);
     fake_send(&r->f, fr->id, fr->len, fr->data);
     r->in_feed = true;
     r->hook_fired_in_feed = false;
-    fw_poll(&r->c);
+    fw_poll(r->c);
     r->in_feed = false;
     oracle_after_frame(r);
 }
@@ -144,6 +144,16 @@ void rig_feed_msg(rig *r, uint8_t node, proto_msg m, const int32_t *values)
         rig_feed(r, &fr);
 }
 
+/* The oracle looks after the period's poll and after its control tick (fw/runtime.h: the order). */
+static void after_call(void *arg, fw_ran what)
+{
+    rig *r = arg;
+    if (what == FW_RAN_POLL)
+        oracle_after_poll(r);
+    else if (what == FW_RAN_CONTROL)
+        oracle_after_control(r);
+}
+
 static void segment_boundary(rig *r)
 {
     oracle_segment(r);
@@ -152,10 +162,7 @@ static void segment_boundary(rig *r)
         rig_feed_msg(r, r->cfg.node, PM_HOST_HEARTBEAT, v);
         r->next_heartbeat_tick = r->tick + 10u * r->cfg.step_hz / 1000u;
     }
-    fw_poll(&r->c);
-    oracle_after_poll(r);
-    fw_control_tick(&r->c);
-    oracle_after_control(r);
+    fw_period_start(r->c, after_call, r);
 }
 
 void rig_advance(rig *r, uint64_t n)
@@ -172,13 +179,13 @@ void rig_advance(rig *r, uint64_t n)
         /* A step generator with nothing running or queued emits nothing until the next control
          * tick queues a segment (stepgen.h): after one tick that shows it, the rest of the
          * segment's ticks are skipped, which makes the long waits of an input at rest cheap. */
-        fw_step_tick(&r->c);
+        fw_step_tick(r->c);
         ++r->tick;
-        if (stepgen_idle(&r->c.sg))
+        if (stepgen_idle(fw_stepgen_of(r->c)))
             r->tick = until;
         else
             for (; r->tick < until; ++r->tick)
-                fw_step_tick(&r->c);
+                fw_step_tick(r->c);
     }
     r->f.now_us = r->tick * r->us_per_tick;
 }
@@ -191,7 +198,7 @@ void rig_run_ms(rig *r, uint32_t ms)
 void rig_run_until_rest(rig *r, uint32_t max_ms)
 {
     for (uint32_t ms = 0; ms < max_ms && !rig_over(r); ++ms) {
-        const fw_state s = r->c.state;
+        const fw_state s = fw_state_of(r->c);
         if (s != FW_STATE_HOMING && s != FW_STATE_MOVING && s != FW_STATE_STOPPING)
             return;
         rig_run_ms(r, 1);
@@ -218,13 +225,14 @@ void rig_reboot(rig *r)
 {
     r->hook_point = RIG_HOOK_NONE;
     r->f.tx_count = 0;
-    FUZZ_CHECK(fw_init(&r->c, &r->hal, &r->cfg) == 0);
+    r->c = fw_init(&r->mem, &r->hal, &r->cfg);
+    FUZZ_CHECK(r->c != NULL);
     oracle_reboot(r);
 }
 
 void rig_report_fault(rig *r, fw_fault f)
 {
-    fw_report_fault(&r->c, f);
+    fw_report_fault(r->c, f);
     rig_input_changed(r);
 }
 

@@ -2,7 +2,7 @@
  * (tests/firmware/fake_hal.h), a clock counted in step interrupts, and the hooks through which the
  * oracle (oracle.h) watches every step pulse, direction change, drive enable, frame and tick.
  *
- * Time runs as on the simulator: at every control-segment boundary a poll (CAN in and out) and a
+ * Time runs as fw/runtime.h orders it: at every control-segment boundary a poll (CAN in and out) and a
  * control tick, between two boundaries step_hz / segment_hz step ticks.  A frame the fuzzer sends
  * is fed alone and followed at once by one poll, at whatever step tick the rig stands, so that its
  * answers and effects belong to it.  Simulated time per input is capped (RIG_CAP_*), so that one
@@ -14,7 +14,9 @@
 #include <stdint.h>
 
 #include "fake_hal.h"
-#include "fw/controller_internal.h"
+#include "fw/controller.h"
+#include "fw/inspect.h"
+#include "fw/runtime.h"
 
 /* The fixtures the first input byte picks (modulo RIG_FIXTURES). */
 typedef enum {
@@ -26,7 +28,7 @@ typedef enum {
      * steps/m (coarse: 15.6 um a step) so that 10 kHz of step interrupts give 0.11 m/s; homing at
      * 10 mm/s with 4 m/s^2 braking.  Saved in the fake flash, as a user would have configured it. */
     RIG_FAST,
-    /* RIG_FAST as the board runs it: node 15, no move blending. */
+    /* RIG_FAST as the board runs it: node 15. */
     RIG_FAST_BOARD,
     /* RIG_FAST with the slides starting on (below) their switches: homing leaves them first. */
     RIG_FAST_ON_SWITCH,
@@ -42,7 +44,8 @@ typedef enum {
 
 typedef struct rig {
     fake_hal f;
-    fw_controller c;
+    fw_controller_mem mem;
+    fw_controller *c;      /* in mem */
     fw_hal hal;            /* what the controller was given: the fake's, with the stepper wrapped */
     hal_stepper inner;     /* the fake's own stepper */
     fw_config cfg;

@@ -4,69 +4,28 @@
 
 void snapshot_take(const rig *r, snapshot *s)
 {
-    const fw_controller *c = &r->c;
     memset(s, 0, sizeof *s);
-    s->state = c->state;
-    s->fault = c->fault;
-    s->pending_fault = c->pending_fault;
-    s->homed = c->homed;
-    s->drives_on = c->drives_on;
+    fw_inspection *c = &s->in;
+    fw_inspect(r->c, c);
+    /* Scratch a refusal may overwrite but nothing reads (snapshot.h). */
+    if (c->src != FW_SRC_MOVE)
+        memset(&c->move, 0, sizeof c->move);
+    if (!c->has_next) {
+        memset(&c->next, 0, sizeof c->next);
+        c->blend_k0 = 0;
+    }
+    if (!c->stopping)
+        c->stop_t = c->stop_T = TSE_R(0.0);
+    if (c->src != FW_SRC_TRAJ) {
+        c->traj_end_us = 0;
+        c->traj_closed = false;
+    }
     s->enable_out = r->f.enabled;
-    s->pose_known = c->pose_known;
-    s->params = c->params;
-    s->lim = c->lim;
     s->pulse_ns = r->f.pulse_ns;
     s->dir_setup_ns = r->f.dir_setup_ns;
     s->timing_calls = r->f.timing_calls;
     s->storage_len = r->f.storage_len;
     memcpy(s->storage, r->f.storage, sizeof s->storage);
-    s->stage_seq = c->stage_seq;
-    s->stage_have = c->stage_have;
-    memcpy(s->stage_v, c->stage_v, sizeof s->stage_v);
-    s->last_seq = c->last_seq;
-    s->any_commit = c->any_commit;
-    s->src = c->src;
-    s->has_next = c->has_next;
-    s->stopping = c->stopping;
-    if (c->src == FW_SRC_MOVE) {
-        memcpy(s->move_to, c->move.to, sizeof s->move_to);
-        s->move_T = c->move.prof.T;
-    }
-    if (c->has_next) {
-        memcpy(s->next_to, c->next.to, sizeof s->next_to);
-        s->next_T = c->next.prof.T;
-        s->blend_k0 = c->blend_k0;
-    }
-    s->stop_t = c->stopping ? c->stop_t : TSE_R(0.0);
-    s->stop_T = c->stopping ? c->stop_T : TSE_R(0.0);
-    s->tau = c->tau;
-    s->segments_run = c->segments_run;
-    s->traj_depth = fw_traj_depth(&c->traj);
-    if (c->src == FW_SRC_TRAJ) {
-        s->traj_end_us = fw_traj_end_us(&c->traj);
-        s->traj_closed = c->traj.closed;
-    }
-    s->run_open = c->run.open;
-    s->run_clock = c->run.clock;
-    s->run_id = c->run.id;
-    s->run_next_seq = c->run.next_seq;
-    s->run_rows = c->run.rows;
-    s->run_ended = c->run.ended;
-    s->run_fault = c->run.fault;
-    s->run_ended_id = c->run.ended_id;
-    s->run_ended_rows = c->run.ended_rows;
-    s->run_ended_us = c->run.ended_us;
-    s->home_active = c->home.active;
-    s->home_abort = c->home.abort;
-    s->home_phase = c->home.phase;
-    memcpy(s->home_axis, c->home.axis, sizeof s->home_axis);
-    s->sg_cfg = c->sg.cfg;
-    s->sg_queued = stepgen_queued(&c->sg);
-    s->sg_idle = stepgen_idle(&c->sg);
-    stepgen_positions(&c->sg, s->sg_pos);
-    memcpy(s->q, c->q, sizeof s->q);
-    memcpy(s->pose, c->pose, sizeof s->pose);
-    s->last_heartbeat_us = c->last_heartbeat_us;
 }
 
 #define SAME(field)                                                                                \
@@ -79,62 +38,62 @@ void snapshot_take(const rig *r, snapshot *s)
 
 bool snapshot_same(const snapshot *a, const snapshot *b, bool spent, const char **what)
 {
-    SAME(state);
-    SAME(fault);
-    SAME(pending_fault);
-    SAME(homed);
-    SAME(drives_on);
+    SAME(in.state);
+    SAME(in.fault);
+    SAME(in.pending_fault);
+    SAME(in.homed);
+    SAME(in.drives_on);
     SAME(enable_out);
-    SAME(pose_known);
-    SAME(params);
-    SAME(lim);
+    SAME(in.pose_known);
+    SAME(in.params);
+    SAME(in.lim);
     SAME(pulse_ns);
     SAME(dir_setup_ns);
     SAME(timing_calls);
     SAME(storage_len);
     SAME(storage);
     if (!spent) {
-        SAME(stage_seq);
-        SAME(stage_have);
-        SAME(stage_v);
-        SAME(last_seq);
-        SAME(any_commit);
+        SAME(in.stage_seq);
+        SAME(in.stage_have);
+        SAME(in.stage_v);
+        SAME(in.last_seq);
+        SAME(in.any_commit);
     }
-    SAME(src);
-    SAME(has_next);
-    SAME(stopping);
-    SAME(move_to);
-    SAME(move_T);
-    SAME(next_to);
-    SAME(next_T);
-    SAME(blend_k0);
-    SAME(stop_t);
-    SAME(stop_T);
-    SAME(tau);
-    SAME(segments_run);
-    SAME(traj_depth);
-    SAME(traj_end_us);
-    SAME(traj_closed);
-    SAME(run_open);
-    SAME(run_clock);
-    SAME(run_id);
-    SAME(run_next_seq);
-    SAME(run_rows);
-    SAME(run_ended);
-    SAME(run_fault);
-    SAME(run_ended_id);
-    SAME(run_ended_rows);
-    SAME(run_ended_us);
-    SAME(home_active);
-    SAME(home_abort);
-    SAME(home_phase);
-    SAME(home_axis);
-    SAME(sg_cfg);
-    SAME(sg_queued);
-    SAME(sg_idle);
-    SAME(sg_pos);
-    SAME(q);
-    SAME(pose);
-    SAME(last_heartbeat_us);
+    SAME(in.src);
+    SAME(in.has_next);
+    SAME(in.stopping);
+    SAME(in.move.to);
+    SAME(in.move.prof.T);
+    SAME(in.next.to);
+    SAME(in.next.prof.T);
+    SAME(in.blend_k0);
+    SAME(in.stop_t);
+    SAME(in.stop_T);
+    SAME(in.tau);
+    SAME(in.segments_run);
+    SAME(in.traj_depth);
+    SAME(in.traj_end_us);
+    SAME(in.traj_closed);
+    SAME(in.run_open);
+    SAME(in.run_clock);
+    SAME(in.run_id);
+    SAME(in.run_next_seq);
+    SAME(in.run_rows);
+    SAME(in.run_ended);
+    SAME(in.run_fault);
+    SAME(in.run_ended_id);
+    SAME(in.run_ended_rows);
+    SAME(in.run_ended_us);
+    SAME(in.home_active);
+    SAME(in.home_abort);
+    SAME(in.home_phase);
+    SAME(in.home_axis);
+    SAME(in.sg_cfg);
+    SAME(in.sg_queued);
+    SAME(in.sg_idle);
+    SAME(in.sg_pos);
+    SAME(in.q);
+    SAME(in.pose);
+    SAME(in.heartbeat_us);
     return true;
 }

@@ -24,41 +24,13 @@
 #include "rig.h"
 
 typedef struct {
-    fw_state state;
-    fw_fault fault, pending_fault;
-    bool homed, drives_on, enable_out, pose_known;
-    fw_param_set params;
-    fw_limits lim;
+    /* The controller's, with what is not compared blanked (see the top). */
+    fw_inspection in;
+    /* The rig's: the enable output, the driver timing programmed, the flash. */
+    bool enable_out;
     uint32_t pulse_ns, dir_setup_ns, timing_calls;
     int storage_len;
     uint8_t storage[256];
-    uint8_t stage_seq, stage_have;
-    int32_t stage_v[6];
-    uint8_t last_seq;
-    bool any_commit;
-    fw_source src;
-    bool has_next, stopping;
-    tse_real move_to[6], move_T, next_to[6], next_T, stop_t, stop_T, tau;
-    uint32_t blend_k0, segments_run;
-    unsigned traj_depth;
-    uint64_t traj_end_us;
-    bool traj_closed;
-    /* The trajectory's life (fw_traj_run), but the TRAJ_END still to send (a poll sends it). */
-    bool run_open, run_clock;
-    uint8_t run_id, run_next_seq, run_ended_id;
-    uint32_t run_rows, run_ended_rows;
-    fw_traj_end run_ended;
-    fw_fault run_fault;
-    uint64_t run_ended_us;
-    bool home_active, home_abort;
-    fw_home_phase home_phase;
-    uint8_t home_axis[6];
-    stepgen_config sg_cfg;
-    unsigned sg_queued;
-    bool sg_idle;
-    int32_t sg_pos[6];
-    tse_real q[6], pose[6];
-    uint64_t last_heartbeat_us;
 } snapshot;
 
 void snapshot_take(const rig *r, snapshot *s);

@@ -17,6 +17,7 @@
 #ifndef HAL_POSIX_PLANT_H
 #define HAL_POSIX_PLANT_H
 
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -52,7 +53,7 @@ typedef struct {
     tse_geometry geom;
     int64_t steps[6];         /* true slide positions, steps from s = 0 */
     uint8_t forward;
-    bool enabled;
+    atomic_bool enabled; /* the drives: off also from the controller's thread (an ESTOP frame) */
     bool estop_open;
     uint64_t tick;            /* step interrupts so far */
     uint64_t last_step[6];    /* tick of each axis' latest step (0: none) */

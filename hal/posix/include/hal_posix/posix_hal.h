@@ -1,18 +1,22 @@
-/* hal/ on Linux: SocketCAN, the monotonic clock, and a timerfd ticker.  (Parameter storage is the
- * simulator's own: host_tools/tse_sim/param_store.h keeps the parameters as a text file.) */
+/* hal/ on Linux: SocketCAN and the monotonic clock.  (The tick thread: hal_posix/ticker.h.
+ * Parameter storage is the simulator's own: host_tools/tse_sim/param_store.h keeps the parameters
+ * as a text file.) */
 #ifndef HAL_POSIX_H
 #define HAL_POSIX_H
 
+#include <stdatomic.h>
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "hal/can.h"
 #include "hal/clock.h"
-#include "hal/ticker.h"
 
+/* The socket is read by the controller's thread (receive, which also takes the error frames) and
+ * its state by the control tick: the state is kept in atomics. */
 typedef struct {
     int fd;
-    uint32_t rx_overruns;
-    hal_can_state state;
+    atomic_bool bus_off, error_passive;
+    atomic_uint bus_off_events, rx_overruns;
 } posix_can;
 
 /* Opens a raw CAN socket on iface, receiving only frames addressed to `node` or to node 0
@@ -23,16 +27,5 @@ void posix_can_close(posix_can *c);
 hal_can posix_can_hal(posix_can *c);
 
 hal_clock posix_clock_hal(void);
-
-typedef struct {
-    volatile int stop;
-    uint64_t periods;    /* control periods run */
-    uint64_t overruns;   /* of them, periods the process was too late for (run late, back to back) */
-    uint64_t max_behind; /* the most periods it was ever behind at once */
-} posix_ticker;
-/* start() runs the loop in the calling thread until stop() (or a signal sets ->stop): every
- * control period one control call, then the period's step calls back to back.  The plant's
- * clock is the step count, so simulated physics stays exact whatever the scheduler does. */
-hal_ticker posix_ticker_hal(posix_ticker *t);
 
 #endif

@@ -1,5 +1,6 @@
-/* The board's I/O as the firmware's HAL sees it (hal/stepper.h, hal/inputs.h, hal/clock.h,
- * hal/ticker.h), on the pins and timers of pinmap.h. */
+/* The board's I/O as the firmware's HAL sees it (hal/stepper.h, hal/inputs.h, hal/clock.h), and
+ * the two timer interrupts that run the controller's step and control contexts (fw/runtime.h), on
+ * the pins and timers of pinmap.h. */
 #ifndef TSE_BOARD_IO_H
 #define TSE_BOARD_IO_H
 
@@ -9,7 +10,6 @@
 #include "hal/clock.h"
 #include "hal/inputs.h"
 #include "hal/stepper.h"
-#include "hal/ticker.h"
 
 /* Configures every pin of pinmap.h: outputs low (drivers disabled), inputs with pull-ups, the
  * CAN pins on their alternate function.  Call once, after the peripheral clocks are on. */
@@ -25,27 +25,34 @@ hal_inputs board_inputs_hal(void);
  * PRIO_ESTOP, i.e. without waiting for the main loop. */
 void board_estop_irq_init(void (*on_estop)(void *arg), void *arg);
 
-/* Microseconds from TIM5, a free-running 1 MHz counter extended to 64 bits.  now_us is called
- * from the main loop only (the extension is not interrupt-safe), often enough (every control
- * tick) that the 32-bit counter never wraps twice between calls. */
+/* Microseconds from TIM5, a free-running 1 MHz counter extended to 64 bits.  now_us may be called
+ * from the main loop and from the control interrupt (the extension is updated with those two
+ * masked for a few instructions: BASEPRI, never the step or e-stop interrupt), often enough (every
+ * control tick) that the 32-bit counter never wraps twice between calls. */
 hal_clock board_clock_hal(uint32_t timer_hz);
 
 typedef struct {
     uint32_t timer_hz;          /* TIM2/TIM3 clock */
-    void (*idle)(void);         /* after every control call: feeds the watchdog */
-    volatile uint32_t due;      /* control ticks raised by TIM3 */
-    uint32_t done;              /* control calls made */
-    uint32_t late;              /* control ticks skipped because the main loop was busy */
+    volatile uint32_t controls; /* control interrupts taken */
     volatile uint32_t steps;    /* step interrupts taken */
-    volatile int stop;
+    /* The longest a control interrupt began behind its timer's period [us]: TIM3 counts
+     * microseconds from each period's start, read first thing.  A figure for a debugger (the
+     * board-emu test control_tick_delay reads it), never acted on; a debugger may clear it. */
+    volatile uint32_t control_delay_max_us;
 } board_ticker;
 
-/* hal_ticker on TIM2 (step interrupt) and TIM3 (control tick).  start() runs the main loop in
- * the calling thread: the step function runs in TIM2's interrupt, the control function in the
- * main loop once per tick of TIM3, then `idle`.  A tick missed while the loop was busy is
- * counted in `late` and not replayed: the controller's path time is counted in segments, so a
- * replay would only repeat its supervision. */
-hal_ticker board_ticker_hal(board_ticker *t);
+/* The application's work in the two interrupts (called directly, not through a pointer, so that
+ * the stack report sees what each can reach): board_step in the step interrupt (TIM2,
+ * PRIO_STEP), board_control in the control interrupt (TIM3, PRIO_CONTROL: below the step
+ * interrupt, above CAN). */
+void board_step(void);
+void board_control(void);
+
+/* Starts the two interrupts, board_step step_hz and board_control control_hz times a second, and
+ * returns: the caller's main loop is the controller's thread.  A control call that outlasts its
+ * period delays the next (TIM3's flag stays set), never stacks.  Returns 0, or -1 for rates the
+ * timers cannot keep exactly. */
+int board_ticker_start(board_ticker *t, uint32_t control_hz, uint32_t step_hz);
 
 /* Stops TIM2, TIM3 and TIM4 and their interrupts (used by tests that start a ticker). */
 void board_ticker_halt(void);

@@ -71,10 +71,12 @@ static const unsigned char pin_limh[6] = {0, 1, 12, 13, 14, 15};
 
 /* Interrupt priorities (0 = most urgent).  The step timer and the e-stop share the top level so
  * that neither preempts the other (the e-stop halts the step generator the step interrupt
- * reads); CAN moves frames between hardware and rings; the control tick only counts. */
+ * reads); TIM4 ends the STEP pulse (stepout.c: 1); the control tick comes next, so that nothing
+ * but stepping delays a setpoint; CAN moves frames between hardware and rings below it (its rings
+ * hold what arrives meanwhile).  Frames, planning and validation run in the main loop. */
 #define PRIO_STEP 0u
 #define PRIO_ESTOP 0u
-#define PRIO_CAN 2u
-#define PRIO_CONTROL 3u
+#define PRIO_CONTROL 2u
+#define PRIO_CAN 3u
 
 #endif

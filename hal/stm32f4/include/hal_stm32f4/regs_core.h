@@ -89,6 +89,22 @@ static inline void tse_irq_enable(void)
     __asm__ volatile("cpsie i" ::: "memory");
 }
 
+/* Masks the interrupts of priority `priority` and below (numerically >= it) until restored, leaving
+ * the more urgent ones running; never lowers a mask already higher.  Returns what to restore. */
+static inline uint32_t tse_basepri_raise(unsigned priority)
+{
+    uint32_t saved;
+    __asm__ volatile("mrs %0, basepri" : "=r"(saved)::"memory");
+    const uint32_t mask = (uint32_t)(priority << 4);
+    __asm__ volatile("msr basepri_max, %0" ::"r"(mask) : "memory");
+    return saved;
+}
+
+static inline void tse_basepri_restore(uint32_t saved)
+{
+    __asm__ volatile("msr basepri, %0" ::"r"(saved) : "memory");
+}
+
 /* Interrupt numbers of the STM32F405/407 (RM0090 table 61) that the board uses. */
 enum {
     IRQ_EXTI9_5 = 23,

@@ -1,0 +1,73 @@
+#include "telemetry.h"
+
+#include "send.h"
+#include "tse/fk.h"
+
+static void send_status(fw_controller *c)
+{
+    const fw_view *v = &c->th.view;
+    uint8_t flags = 0;
+    if (v->flags & FW_VIEW_HOMED)
+        flags |= 1u;
+    if (v->flags & FW_VIEW_DRIVES)
+        flags |= 2u;
+    if (v->flags & FW_VIEW_ESTOP_IN)
+        flags |= 4u;
+    if (v->flags & FW_VIEW_SWITCHES_OFF)
+        flags |= 8u;
+    if (v->flags & FW_VIEW_ERROR_PASSIVE)
+        flags |= 16u;
+    const int32_t s[7] = {v->state, v->fault, flags, (int32_t)v->traj_depth,
+                          (int32_t)(FW_TRAJ_CAPACITY - v->traj_depth), c->th.last_seq, c->th.counter++};
+    fw_send(c, PM_STATUS, s);
+}
+
+/* A slide position in the wire's nanometres.  The stroke may reach 5 m, beyond what an i32 of
+ * nanometres holds (2.147 m): past it the field's end is sent, not an undefined conversion. */
+static int32_t wire_nm(tse_real s)
+{
+    const tse_real nm = s * TSE_R(1e9);
+    if (nm >= TSE_R(2147483647.0))
+        return INT32_MAX;
+    if (nm <= TSE_R(-2147483648.0))
+        return INT32_MIN;
+    return (int32_t)nm;
+}
+
+static void send_telemetry(fw_controller *c)
+{
+    const fw_view *v = &c->th.view;
+    tse_real q[6];
+    const tse_real spm = (tse_real)c->th.params.v[FP_STEPS_PER_M];
+    for (int k = 0; k < 6; ++k)
+        q[k] = (tse_real)v->pos[k] / spm;
+    for (int k = 0; k < 3; ++k) {
+        const int32_t s[2] = {wire_nm(q[2 * k]), wire_nm(q[2 * k + 1])};
+        fw_send(c, (proto_msg)(PM_SLIDES_A + k), s);
+    }
+    if (!(v->flags & FW_VIEW_HOMED))
+        return; /* no zero, no pose */
+    tse_fk_result fk;
+    const tse_real *seed = (v->flags & FW_VIEW_POSE_KNOWN) ? v->pose : c->th.geom.home_pose;
+    if (tse_fk(&c->th.geom, q, seed, &fk) != TSE_OK)
+        return;
+    for (int k = 0; k < 3; ++k) {
+        const int32_t s[2] = {(int32_t)(fk.pose[2 * k] * TSE_R(1e6)), (int32_t)(fk.pose[2 * k + 1] * TSE_R(1e6))};
+        fw_send(c, (proto_msg)(PM_FK_A + k), s);
+    }
+}
+
+void fw_telemetry_poll(fw_controller *c)
+{
+    fw_thread *th = &c->th;
+    const uint64_t t = fw_now(c);
+    if (t >= th->next_status_us) {
+        send_status(c);
+        th->next_status_us = t + (uint64_t)th->params.v[FP_STATUS_MS] * 1000u;
+    }
+    const uint32_t tel = (uint32_t)th->params.v[FP_TELEMETRY_MS];
+    if (tel > 0 && t >= th->next_telemetry_us) {
+        send_telemetry(c);
+        th->next_telemetry_us = t + (uint64_t)tel * 1000u;
+    }
+}
