@@ -84,12 +84,14 @@ static int run_python(const char *prog, const char *arg, const plan *p, const fw
             prev_t = row.t;
         }
     }
-    if (f)
-        fclose(f);
-    else
-        close(fd[1]);
+    /* The data reached the plotter whole, or the plot is not taken as drawn. */
+    const int sent = f ? fclose(f) : (close(fd[1]), -1);
     int status;
     while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    if (sent != 0 && p) {
+        snprintf(err, errlen, "the data for the plot did not reach %s whole", PLOT_PYTHON);
+        return -1;
     }
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
