@@ -56,6 +56,14 @@ def motions_since(m):
     return sim_log().count("motion accepted") - m
 
 
+def controller_clock():
+    """The controller's own time in s: real time on tse-sim; on the board, the emulator's virtual
+    time (the rig's clock), which never runs ahead of real time."""
+    if BOARD:
+        return int(_rig("time").split()[1]) / 1e9
+    return time.monotonic()
+
+
 def controller_sleep(seconds):
     """Lets `seconds` of the controller's own time pass: real time on tse-sim; on the board, the
     emulator's virtual time (the rig's clock), which runs slower than real time."""

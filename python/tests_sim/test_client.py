@@ -18,7 +18,7 @@ from tse import can as tcan
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from plant import BOARD, controller_sleep, mark, motions_since, pose_at_rest as plant_at_rest  # noqa: E402
+from plant import BOARD, controller_clock, controller_sleep, mark, motions_since, pose_at_rest as plant_at_rest  # noqa: E402
 
 
 def assert_near(pose, target, pos_tol=10e-6, ang_tol=1e-5):
@@ -159,11 +159,18 @@ def ctrl_c():
     signal.signal(signal.SIGINT, old)
 
 
-def interrupt_main_after(*delays):
-    """KeyboardInterrupt in the main thread (as Ctrl-C raises it) after each delay, in s from now."""
+def interrupt_main_after(first, *then):
+    """KeyboardInterrupt in the main thread (as Ctrl-C raises it): first after `first` s of the
+    controller's time from now (so that it lands in the same phase of a motion on tse-sim and on
+    the slower emulated board), then after each of `then`, in real s after the first (a gap that
+    is at most as long in the controller's time, which never runs ahead of real time)."""
     def fire():
+        c0 = controller_clock()
+        while controller_clock() < c0 + first:
+            time.sleep(0.01)
+        _thread.interrupt_main()
         t0 = time.monotonic()
-        for d in delays:
+        for d in then:
             time.sleep(max(0.0, t0 + d - time.monotonic()))
             _thread.interrupt_main()
     t = threading.Thread(target=fire, daemon=True)
@@ -203,7 +210,7 @@ def test_ctrl_c_in_a_waiting_move_stops_the_robot(ctl, ctrl_c):
 def test_second_ctrl_c_while_stopping_sends_estop(ctl, ctrl_c):
     ready(ctl)
     # A fast move, so that its stop takes a while (the ramp is sized from the slides' speed).
-    fire = interrupt_main_after(2.0, 2.1)
+    fire = interrupt_main_after(1.0, 0.1)  # mid-move: the move takes about 2 s
     with pytest.raises(KeyboardInterrupt):
         ctl.move([0.0, 0.0, 0.8, 0.0, 0.0, 0.0], speed=0.15, wait=True)
     fire.join()
