@@ -70,6 +70,6 @@ def controller_sleep(seconds):
     if not BOARD:
         time.sleep(seconds)
         return
-    start = int(_rig("time").split()[1])
-    while int(_rig("time").split()[1]) - start < seconds * 1e9:
+    start = controller_clock()
+    while controller_clock() - start < seconds:
         time.sleep(0.05)
