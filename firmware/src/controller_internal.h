@@ -114,6 +114,7 @@ typedef struct {
  * and what the thread prepared for it. */
 typedef struct {
     proto_msg msg;
+    uint8_t judged; /* fw_state: the state the thread judged it in (its view) */
     union {
         struct {
             fw_move mv;

@@ -15,6 +15,7 @@ fw_request *fw_handover_request(fw_controller *c, proto_msg msg)
 {
     fw_request *r = &c->sh.req;
     r->msg = msg;
+    r->judged = c->th.view.state;
     return r;
 }
 
@@ -130,6 +131,11 @@ void fw_handover_take(fw_controller *c)
     memset(&v, 0, sizeof v);
     v.start = FW_START_REST;
     v.reason = fw_command_allowed(s->req.msg, c->tick.state);
+    /* CLEAR_FAULT clears only what its sender could have seen: an e-stop that latched after the
+     * thread judged it (its interrupt between the thread's look and the hand-over, completed just
+     * now or by the tick meanwhile) stays, and shows, until a CLEAR_FAULT sent after it. */
+    if (s->req.msg == PM_CLEAR_FAULT && c->tick.state == FW_STATE_ESTOP && s->req.judged != FW_STATE_ESTOP)
+        v.reason = FW_REASON_STATE;
     /* A row of a trajectory the tick ended (its rows ran out, a fault) after the thread judged the
      * row: refused `ended` whatever the state it left (docs/protocol.md), as the thread refuses
      * the rows that come after it; the thread says how it ended. */

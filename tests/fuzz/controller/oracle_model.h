@@ -19,6 +19,7 @@ typedef struct oracle_model {
     bool estop_cut;             /* the e-stop interrupt fired, ESTOP not yet entered */
     bool cut_inside;            /* ... inside the work that runs now, which may not complete it */
     bool estop_read;            /* the e-stop input as the last control tick read it (STATUS says it) */
+    bool estop_read_unsure;     /* an e-stop interrupt came inside that tick: before its read or after */
     bool passive_read;          /* the CAN controller's error-passive state, likewise */
     int32_t steps_read[6];      /* the plant's steps at the last control tick (SLIDES says them) */
     /* The staged pose as docs/protocol.md's staging rules and the refusals make it. */
