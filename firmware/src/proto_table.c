@@ -172,7 +172,8 @@ const proto_def proto_table[PM_COUNT] = {
      "Once homed, a switch that disagrees with the step count by more than 0.5 mm latches a limit "
      "fault.")},
     {PM_CLEAR_FAULT, 0x09, "CLEAR_FAULT", PROTO_TO_CONTROLLER, 1, 1, {SEQ(0)},
-     FW_DOC("Leave the fault or e-stop state (the e-stop input must be closed). The drives stay off.")},
+     FW_DOC("Leave the fault or e-stop state (the e-stop input must be closed; an e-stop that latched "
+            "after the controller took the command stays). The drives stay off.")},
     {PM_POSE_A, 0x0A, "POSE_A", PROTO_TO_CONTROLLER, 7, 3,
      {SEQ(0), POS24("x", 1, "plate centre X"), POS24("y", 4, "plate centre Y")},
      FW_DOC("Pose part 1 of 3, staged under its sequence number.")},

@@ -110,7 +110,7 @@ MESSAGES = {
     "CLEAR_FAULT": (0x09, "to_controller", 1, (
         ("seq", "u8", 0, 0, 255, "", 1.0, None,
          "sequence number, echoed in ACK/REJECT"),
-    ), "Leave the fault or e-stop state (the e-stop input must be closed). The drives stay off."),
+    ), "Leave the fault or e-stop state (the e-stop input must be closed; an e-stop that latched after the controller took the command stays). The drives stay off."),
     "POSE_A": (0x0A, "to_controller", 7, (
         ("seq", "u8", 0, 0, 255, "", 1.0, None,
          "sequence number, echoed in ACK/REJECT"),
