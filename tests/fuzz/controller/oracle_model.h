@@ -22,6 +22,8 @@ typedef struct oracle_model {
     bool estop_read_unsure;     /* an e-stop interrupt came inside that tick: before its read or after */
     bool passive_read;          /* the CAN controller's error-passive state, likewise */
     int32_t steps_read[6];      /* the plant's steps at the last control tick (SLIDES says them) */
+    int32_t steps_handed[6];    /* ... or at a command handed over since: its hand-over publishes too */
+    bool handed;
     /* The staged pose as docs/protocol.md's staging rules and the refusals make it. */
     uint8_t stage_seq, stage_have;
     int32_t stage_v[6];
