@@ -3,8 +3,8 @@
 # ones named) for SECONDS (default 3600) from its committed seed corpus, JOBS at a time (default
 # the number of cores), at low priority.  Each run's figures (executions, rate, coverage, corpus)
 # are printed and kept in build/fuzz/long/<target>/fuzz.log; the corpus it grew stays in
-# build/fuzz/long/<target>/corpus, to be merged into the seeds with
-#   build/fuzz/tests/fuzz/<t>/fuzz_<t> -merge=1 tests/fuzz/<t>/corpus build/fuzz/long/<t>/corpus
+# build/fuzz/long/<target>/corpus, to be merged into its folder's seeds with
+#   build/fuzz/tests/fuzz/<folder>/fuzz_<t> -merge=1 tests/fuzz/<folder>/corpus build/fuzz/long/<t>/corpus
 #   scripts/fuzz_long.sh [--seconds S] [--jobs J] [target...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,11 +22,21 @@ while [ $# -gt 0 ]; do
 done
 case $seconds in ''|*[!0-9]*) echo "fuzz_long.sh: --seconds takes a whole number, not '$seconds'" >&2; exit 2 ;; esac
 case $jobs in ''|*[!0-9]*|0) echo "fuzz_long.sh: --jobs takes a whole number >= 1, not '$jobs'" >&2; exit 2 ;; esac
+# A target is declared in its folder's CMakeLists.txt (tse_fuzz_target NAME); a folder may declare
+# more than one (controller and controller_float share theirs, with its seeds and regressions).
+declared() {
+  local d
+  for d in tests/fuzz/*/CMakeLists.txt; do
+    sed -nE 's/^tse_fuzz_target\(NAME ([a-z_0-9]+).*/\1 '"$(basename "$(dirname "$d")")"'/p' "$d"
+  done
+}
 if [ ${#targets[@]} -eq 0 ]; then
-  for d in tests/fuzz/*/CMakeLists.txt; do targets+=("$(basename "$(dirname "$d")")"); done
+  while read -r t _; do targets+=("$t"); done < <(declared)
 fi
+declare -A folder
+while read -r t d; do folder[$t]=$d; done < <(declared)
 for t in "${targets[@]}"; do
-  [ -f "tests/fuzz/$t/CMakeLists.txt" ] || { echo "fuzz_long.sh: no fuzz target '$t' in tests/fuzz" >&2; exit 2; }
+  [ -n "${folder[$t]:-}" ] || { echo "fuzz_long.sh: no fuzz target '$t' in tests/fuzz" >&2; exit 2; }
 done
 
 cmake --preset fuzz >/dev/null
@@ -35,8 +45,8 @@ echo "fuzz_long.sh: ${#targets[@]} targets for $seconds s each, $jobs at a time"
 failed=0
 run_one() {
   local t=$1 exe
-  exe=$(find build/fuzz/tests/fuzz/"$t" -maxdepth 1 -name "fuzz_$t" -type f | head -1)
-  nice -n 19 bash tests/fuzz/run_fuzzer.sh "$exe" "$t" "$seconds" "tests/fuzz/$t/corpus" \
+  exe=$(find build/fuzz/tests/fuzz/"${folder[$t]}" -maxdepth 1 -name "fuzz_$t" -type f | head -1)
+  nice -n 19 bash tests/fuzz/run_fuzzer.sh "$exe" "$t" "$seconds" "tests/fuzz/${folder[$t]}/corpus" \
     "build/fuzz/long/$t" $(cat "build/fuzz/fuzz-work/$t.flags")
 }
 running=0

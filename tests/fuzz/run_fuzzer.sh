@@ -44,6 +44,6 @@ if [ "$rc" -ne 0 ]; then
   echo "fuzz $name: FAILED (exit $rc); input kept in $work/artifacts/:" >&2
   ls -1 "$work/artifacts" >&2 || true
   echo "fuzz $name: reproduce with: $fuzzer $work/artifacts/<file>; once fixed, add the file" \
-       "to tests/fuzz/$name/regressions/ so that the host build replays it" >&2
+       "to $(realpath -m --relative-to=. "$seeds/../regressions")/ so that the host build replays it" >&2
   exit "$rc"
 fi

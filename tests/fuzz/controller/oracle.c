@@ -1,4 +1,5 @@
 #include "oracle.h"
+#include "fk_check.h"
 #include "oracle_model.h"
 
 #include <math.h>
@@ -148,6 +149,12 @@ static void read_outputs(rig *r, oracle_outputs *out)
         case PM_SLIDES_B:
         case PM_SLIDES_C:
             check_slides(r, 2 * (m - PM_SLIDES_A), v);
+            fk_check_frame(&o, r, m, v);
+            break;
+        case PM_FK_A:
+        case PM_FK_B:
+        case PM_FK_C:
+            fk_check_frame(&o, r, m, v);
             break;
         case PM_TRAJ_END: /* a fault travels with the fault ending, and only with it */
             FUZZ_CHECK((v[1] == FW_TRAJ_END_FAULT) == (v[2] != FW_FAULT_NONE));
@@ -157,6 +164,7 @@ static void read_outputs(rig *r, oracle_outputs *out)
         }
     }
     r->f.tx_count = 0;
+    fk_check_burst(&o, r);
 }
 
 /* What the controller promises whenever it is looked at. */

@@ -24,6 +24,10 @@ typedef struct oracle_model {
     int32_t steps_read[6];      /* the plant's steps at the last control tick (SLIDES says them) */
     int32_t steps_handed[6];    /* ... or at a command handed over since: its hand-over publishes too */
     bool handed;
+    /* The telemetry burst being read: SLIDES [m] and FK [m, rad] as sent, bit k of have for
+     * slide k, bit 6 + k for pose coordinate k. */
+    double tel_q[6], tel_fk[6];
+    unsigned tel_have;
     /* The staged pose as docs/protocol.md's staging rules and the refusals make it. */
     uint8_t stage_seq, stage_have;
     int32_t stage_v[6];
