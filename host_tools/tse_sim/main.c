@@ -349,7 +349,11 @@ int main(int argc, char **argv)
                        (uint32_t)fp->v[FP_STEP_PULSE_NS], (uint32_t)fp->v[FP_DIR_SETUP_NS], {0}};
     for (int k = 0; k < 6; ++k)
         pc.home_sw[k] = (double)fp->v[FP_HOME_SW_1 + k] * 1e-6;
-    plant_init(&s.plant, &pc, fw_geometry_of(s.fw), starts);
+    const plant_kinematics pk = plant_kinematics_of(&fw_geometry_of(s.fw)->p);
+    if (plant_init(&s.plant, &pc, &pk, starts) != 0) {
+        fprintf(stderr, "tse-sim: the kinematics refuses the controller's own geometry for the plant\n");
+        return 1;
+    }
     s.last_state = FW_STATE_BOOT;
     estop_watch_init(&s.estop);
 

@@ -35,7 +35,8 @@ void rig_boot(sim_rig *r, double start_m)
     for (int k = 0; k < 6; ++k)
         pc.home_sw[k] = fp->v[FP_HOME_SW_1 + k] * 1e-6;
     const double s0[6] = {start_m, start_m, start_m, start_m, start_m, start_m};
-    plant_init(&r->plant, &pc, fw_geometry_of(r->fw), s0);
+    const plant_kinematics pk = plant_kinematics_of(&fw_geometry_of(r->fw)->p);
+    assert_int_equal(plant_init(&r->plant, &pc, &pk, s0), 0);
     r->host_alive = true;
     r->seq = 1;
 }
@@ -67,7 +68,20 @@ static void check(sim_rig *r, fw_state s0, bool estop_open, uint64_t emitted0)
         fail_msg("t = %.3f s: e-stop input open: %llu steps, state %d", t, (unsigned long long)emitted, c->state);
     if (s0 == FW_STATE_HOMING || c->state == FW_STATE_HOMING) {
         r->offset_known = false; /* homing sets the zero */
+        r->lost_at_zero = r->stepper.lost_total;
         return;
+    }
+    /* Homed and moving, no step lost since the zero: the true slides are at a pose inside every
+     * limit (the double-precision FK finds one and its IK check passes), whatever precision the
+     * controller computes in (this rig runs it in float too, as the board does). */
+    if (c->homed && moves_robot(c->state) && !estop_open && r->stepper.lost_total == r->lost_at_zero) {
+        if (!plant_update_pose(&r->plant)) {
+            double q[6];
+            plant_slides(&r->plant, q);
+            fail_msg("t = %.3f s: state %d: the slides (%.6f %.6f %.6f %.6f %.6f %.6f m) are at no valid pose", t,
+                     c->state, q[0], q[1], q[2], q[3], q[4], q[5]);
+        }
+        ++r->poses_checked;
     }
     for (int k = 0; k < 6; ++k) {
         const int64_t d = (int64_t)c->sg_pos[k] - (r->plant.steps[k] + r->stepper.lost[k]);

@@ -62,6 +62,8 @@ typedef struct {
     uint32_t state_ms[FW_STATE_COUNT];
     bool offset_known;
     int64_t offset[6];        /* count - (taken + lost) of each slide since the last homing */
+    uint64_t lost_at_zero;    /* the fault layer's lost steps when homing last set the zero */
+    uint64_t poses_checked;   /* control periods whose true slides the double FK placed (check) */
 } sim_rig;
 
 /* A controller with the default parameters, the plant built from them, its slides at start_m;

@@ -141,7 +141,8 @@ static void boot(const double s0[6], const int32_t *sw_um)
                        (uint32_t)fw_params_of(C)->v[FP_STEP_PULSE_NS], (uint32_t)fw_params_of(C)->v[FP_DIR_SETUP_NS], {0}};
     for (int k = 0; k < 6; ++k)
         pc.home_sw[k] = fw_params_of(C)->v[FP_HOME_SW_1 + k] * 1e-6;
-    plant_init(&P, &pc, fw_geometry_of(C), s0);
+    const plant_kinematics pk = plant_kinematics_of(&fw_geometry_of(C)->p);
+    assert_int_equal(plant_init(&P, &pc, &pk, s0), 0);
     for (int k = 0; k < 6; ++k)
         lowest[k] = s0[k];
 }
@@ -421,7 +422,8 @@ static void test_plant_switches_and_timing(void **state)
     /* Slide 1 on its switch's last pressed step (0.2 m = 256000 steps), slide 2 a step above,
      * slide 3 a step beyond the high end (0.9 m). */
     const double s0[6] = {0.2, 0.2 + 1 / 1280000.0, 0.9 + 1 / 1280000.0, 0.3, 0.3, 0.3};
-    plant_init(&P, &pc, &g, s0);
+    const plant_kinematics pk = plant_kinematics_of(&g.p);
+    assert_int_equal(plant_init(&P, &pc, &pk, s0), 0);
     const hal_inputs in = plant_inputs(&P);
     const hal_stepper st = plant_stepper(&P);
     const uint16_t m = in.limits(in.ctx);

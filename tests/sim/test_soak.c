@@ -867,8 +867,11 @@ static void settle(void)
 static void report(void)
 {
     const fault_can_stats *s = &R.can.stats;
-    print_message("soak: %.1f s simulated, %llu control periods checked, plant invariant breaches %s\n",
-                  (double)now() * 1e-6, (unsigned long long)R.ticks, R.plant.breaches ? "SOME" : "0");
+    print_message("soak (controller in %s): %.1f s simulated, %llu control periods checked, plant invariant "
+                  "breaches %s; in %llu of them moving, homed, no step lost: the true slides at a valid pose by "
+                  "double FK\n",
+                  TSE_REAL_FLOAT ? "float" : "double", (double)now() * 1e-6, (unsigned long long)R.ticks,
+                  R.plant.breaches ? "SOME" : "0", (unsigned long long)R.poses_checked);
     print_message("commands sent: %u (and %u heartbeats); by kind:\n", n.sent, n.heartbeats);
     for (int k = 0; k < K_KINDS; ++k)
         print_message("  %-32s %u\n", kind_names[k], n.by_kind[k]);

@@ -5,8 +5,22 @@
 #include <string.h>
 
 #include "tse/fk.h"
+#include "tse/geometry.h"
+
+#if TSE_REAL_FLOAT
+#error "the plant is the world: build it in double"
+#endif
 
 #define STRIDE_MS 10
+
+_Static_assert(sizeof(tse_geometry) <= PLANT_GEOMETRY_BYTES, "plant_geometry too small for tse_geometry");
+_Static_assert(_Alignof(tse_geometry) <= _Alignof(plant_geometry), "plant_geometry under-aligned");
+
+/* The geometry in the plant's bytes: written once by plant_init (a copy), read only here. */
+static const tse_geometry *geom(const tse_plant *p)
+{
+    return (const tse_geometry *)(const void *)p->geom.bytes;
+}
 
 static void breach(tse_plant *p, plant_breach b, int axis, const char *what)
 {
@@ -16,11 +30,17 @@ static void breach(tse_plant *p, plant_breach b, int axis, const char *what)
     p->breaches |= (uint32_t)b;
 }
 
-void plant_init(tse_plant *p, const plant_config *cfg, const tse_geometry *g, const double start[6])
+int plant_init(tse_plant *p, const plant_config *cfg, const plant_kinematics *kin, const double start[6])
 {
     memset(p, 0, sizeof *p);
+    const tse_params kp = {kin->L,         kin->k1,    kin->eta,   kin->k3,     kin->k4,    kin->alpha_min,
+                           kin->alpha_max, kin->s_min, kin->s_max, kin->mu_min, kin->nu_min};
+    tse_geometry built;
+    if (tse_geometry_init(&built, &kp) != TSE_PARAM_OK)
+        return -1;
+    memcpy(p->geom.bytes, &built, sizeof built);
+    const tse_geometry *g = geom(p);
     p->cfg = *cfg;
-    p->geom = *g;
     for (int k = 0; k < 6; ++k) {
         p->steps[k] = llround(start[k] * cfg->steps_per_m);
         /* s <= home_sw in whole steps; a millionth of a step absorbs the decimal conversions. */
@@ -34,6 +54,7 @@ void plant_init(tse_plant *p, const plant_config *cfg, const tse_geometry *g, co
     p->forward = 0x3F;
     for (int k = 0; k < 6; ++k)
         p->pose[k] = g->home_pose[k];
+    return 0;
 }
 
 /* Whether `ticks` step interrupts last less than ns nanoseconds. */
@@ -86,7 +107,7 @@ static void pulse(void *ctx, uint8_t mask)
         const int dir = ((p->forward >> k) & 1u) ? 1 : -1;
         p->steps[k] += dir;
         const double s = (double)p->steps[k] / spm;
-        if (s < p->geom.p.s_min - PLANT_OVERTRAVEL || s > p->geom.p.s_max + PLANT_OVERTRAVEL)
+        if (s < geom(p)->p.s_min - PLANT_OVERTRAVEL || s > geom(p)->p.s_max + PLANT_OVERTRAVEL)
             breach(p, PLANT_BEYOND_STROKE, k, "slide beyond the mechanical stroke");
     }
 }
@@ -111,7 +132,7 @@ static uint16_t limits(void *ctx)
     for (int k = 0; k < 6; ++k) {
         if (p->steps[k] <= p->sw_steps[k])
             m |= (uint16_t)(1u << k);
-        if ((double)p->steps[k] / p->cfg.steps_per_m > p->geom.p.s_max)
+        if ((double)p->steps[k] / p->cfg.steps_per_m > geom(p)->p.s_max)
             m |= (uint16_t)(1u << (8 + k));
     }
     return m;
@@ -177,7 +198,7 @@ bool plant_update_pose(tse_plant *p)
     double q[6];
     plant_slides(p, q);
     tse_fk_result f;
-    if (tse_fk(&p->geom, q, p->pose_valid ? p->pose : p->geom.home_pose, &f) != TSE_OK) {
+    if (tse_fk(geom(p), q, p->pose_valid ? p->pose : geom(p)->home_pose, &f) != TSE_OK) {
         p->pose_valid = false;
         return false;
     }

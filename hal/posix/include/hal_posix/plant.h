@@ -23,7 +23,7 @@
 
 #include "hal/inputs.h"
 #include "hal/stepper.h"
-#include "tse/geometry.h"
+#include "tse/params.h"
 
 #define PLANT_OVERTRAVEL 0.010 /* m beyond each end of the kinematic stroke */
 
@@ -48,9 +48,34 @@ typedef struct {
     double home_sw[6];        /* where each low switch trips [m] */
 } plant_config;
 
+/* The machine's kinematic parameters [m, rad]: the plant is the world, computed in double
+ * whatever precision the controller beside it is built in (tests/sim runs the controller in
+ * float too, as the board computes). */
+typedef struct {
+    double L, k1, eta, k3, k4, alpha_min, alpha_max, s_min, s_max, mu_min, nu_min;
+} plant_kinematics;
+
+/* From the kinematics' parameters in the includer's precision (a float controller's are within
+ * 1e-7 of their decimal values: the machine is then built as the board believes it). */
+static inline plant_kinematics plant_kinematics_of(const tse_params *p)
+{
+    const plant_kinematics k = {(double)p->L,         (double)p->k1,        (double)p->eta,
+                                (double)p->k3,        (double)p->k4,        (double)p->alpha_min,
+                                (double)p->alpha_max, (double)p->s_min,     (double)p->s_max,
+                                (double)p->mu_min,    (double)p->nu_min};
+    return k;
+}
+
+/* The double-precision geometry, held as bytes so that this header means one layout in a TU of
+ * either precision (tse_geometry's depends on it); only plant.c reads it. */
+#define PLANT_GEOMETRY_BYTES 512
+typedef struct {
+    _Alignas(8) unsigned char bytes[PLANT_GEOMETRY_BYTES];
+} plant_geometry;
+
 typedef struct {
     plant_config cfg;
-    tse_geometry geom;
+    plant_geometry geom;
     int64_t steps[6];         /* true slide positions, steps from s = 0 */
     uint8_t forward;
     atomic_bool enabled; /* the drives: off also from the controller's thread (an ESTOP frame) */
@@ -76,8 +101,9 @@ typedef struct {
     bool pose_valid;
 } tse_plant;
 
-/* Slides start at `start` [m] (where the robot was at power-up). */
-void plant_init(tse_plant *p, const plant_config *cfg, const tse_geometry *g, const double start[6]);
+/* Slides start at `start` [m] (where the robot was at power-up).  Returns 0, or -1 when the
+ * kinematics refuses the parameters (the plant is then unusable). */
+int plant_init(tse_plant *p, const plant_config *cfg, const plant_kinematics *k, const double start[6]);
 
 hal_stepper plant_stepper(tse_plant *p);
 hal_inputs plant_inputs(tse_plant *p);
