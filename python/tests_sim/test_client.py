@@ -2,10 +2,11 @@
 tse-sim, which the script starts with its log in $TSE_SIM_LOG, or the production image on the
 emulated board (TSE_TARGET=board; plant.py says where the robot physically is on each).  The tests run in file order on one simulated
 robot, as a user's session would: enable, home, a move checked to 10 um by the simulator's plant,
-an unreachable pose refused with nothing moving, a short trajectory, a trajectory another client's
+an unreachable pose refused with nothing moving, a short trajectory, a planned circle, a trajectory another client's
 STOP ends, Ctrl-C in waiting calls, parameters, e-stop, the watchdog on a killed heartbeat, and a
 motion stopped by leaving a with-block."""
 import _thread
+import math
 import os
 import signal
 import sys
@@ -111,6 +112,22 @@ def test_short_trajectory_with_progress(ctl):
     ctl.trajectory(rows, progress=lambda sent, total: seen.append((sent, total)))
     assert seen[-1] == (n, n) and [s for s, _ in seen] == list(range(1, n + 1))
     assert_near(plant_at_rest(), rows[-1][1:])
+    assert ctl.status().queue_depth == 0
+
+
+def test_planned_circle_through_waypoints(ctl):
+    """Controller.path: a 2 cm circle through nine waypoints from where the plate is, planned by
+    tse.plan against the controller's own parameters, checked whole and streamed: no refusal, every
+    row taken, the plate at rest on the last waypoint (the first) to 10 um."""
+    start = plant_at_rest()
+    r = 0.02
+    wp = [[start[0] - r + r * math.cos(2 * math.pi * k / 8), start[1] + r * math.sin(2 * math.pi * k / 8), *start[2:]]
+          for k in range(9)]
+    plan, streamed = ctl.path(wp)
+    print(f"{len(plan.rows)} rows, {plan.duration:.3f} s planned, peaks {plan.v_peak:.2f} of speed and "
+          f"{plan.a_peak:.2f} of acceleration, {plan.near_share:.0%} of the rows near a limit; {streamed}")
+    assert streamed.rows == len(plan.rows) and plan.v_peak <= 1.0 and plan.a_peak <= 1.0
+    assert_near(plant_at_rest(), wp[-1])
     assert ctl.status().queue_depth == 0
 
 

@@ -52,6 +52,9 @@
 # Environment:
 #   HARNESS_FILES="a.csv p.txt"  data files, as --file (use --file for a path with a space)
 #   HARNESS_PYTHON="dir1 dir2"   Python trees, as --python (use --python for a path with a space)
+#   HARNESS_PY_PACKAGES="python3-numpy"  Debian python3-* packages the Python of --python gets
+#                                besides python3-can and python3-pytest (each with its own
+#                                python3-* dependencies and shared libraries), installed here
 #   HARNESS_LIVE=1               show the scenario's output as it happens (VM path: progress bars
 #                                included) instead of all at once when the VM has powered off
 #   HARNESS_TIMEOUT=SECONDS      the scenario's time limit (default 480).  A scenario still
@@ -75,7 +78,8 @@ PATH; each --file PATH (and each path in HARNESS_FILES) is copied into its worki
 With --python DIR (and HARNESS_PYTHON) the scenario can run python3 (Debian's, with python-can and
 pytest) with each DIR on PYTHONPATH (in the VM: /py/NAME of DIR).
 With --board ELF the controller is that image on the emulated board (TSE_TARGET=board, TSE_RIG).
-Environment: HARNESS_FILES, HARNESS_PYTHON, HARNESS_LIVE=1, HARNESS_TIMEOUT=SECONDS (default 480);
+Environment: HARNESS_FILES, HARNESS_PYTHON, HARNESS_PY_PACKAGES, HARNESS_LIVE=1,
+HARNESS_TIMEOUT=SECONDS (default 480);
 see the header of this script.
 EOF
 }
@@ -164,7 +168,8 @@ esac
 limit=$((10#$limit))
 if [ ${#pypath[@]} -gt 0 ]; then
   [ -x /usr/bin/python3 ] || { echo "harness: /usr/bin/python3 not found (run scripts/setup.sh as root)"; exit 1; }
-  for p in python3-can python3-pytest; do
+  for p in python3-can python3-pytest ${HARNESS_PY_PACKAGES-}; do
+    case $p in python3-*) ;; *) die "HARNESS_PY_PACKAGES names Debian python3-* packages, not '$p'" ;; esac
     [ "$(dpkg-query -W -f='${db:Status-Abbrev}' "$p" 2>/dev/null)" = "ii " ] ||
       { echo "harness: $p is not installed (run scripts/setup.sh as root)"; exit 1; }
   done
@@ -373,7 +378,8 @@ if [ ${#pypath[@]} -gt 0 ]; then
   py_tag=cpython-$(echo "${py_name#python}" | tr -d .) # the .pyc tag, cpython-311
   py_lib=usr/lib/$py_name
   declare -A py_got=()
-  py_todo=(python3-can python3-pytest)
+  # shellcheck disable=SC2206 # a list of package names
+  py_todo=(python3-can python3-pytest ${HARNESS_PY_PACKAGES-})
   while [ ${#py_todo[@]} -gt 0 ]; do
     p=${py_todo[0]}
     py_todo=("${py_todo[@]:1}")

@@ -17,7 +17,8 @@ mkdir -p "$work"
 readme=$(dirname "$pydir")/README.md
 awk '/^## Python/ { on = 1; next } on && /^```python/ { grab = 1; next } grab && /^```/ { exit } grab' \
   "$readme" >"$work/readme_session.py"
-bash "$here/harness.sh" ${board[@]+"${board[@]}"} --python "$pydir" --file "$work/readme_session.py" \
+# numpy: Controller.path plans with tse.plan, whose arrays are numpy's.
+HARNESS_PY_PACKAGES=python3-numpy bash "$here/harness.sh" ${board[@]+"${board[@]}"} --python "$pydir" --file "$work/readme_session.py" \
   --file "$here/target.sh" "$here/python_can.sh" "$work" "$@" >"$out" 2>&1
 rc=$?
 sed '/=== telemetry begin/,/=== telemetry end/d' "$out"
