@@ -151,6 +151,8 @@ if [ "$mode" = local ]; then
   refused "two python directories of one name" "two python directories named pkg" \
     bash "$harness" --python "$work/pkg" --python "$work/other/pkg" "${ok_args[@]}"
   refused "--python without a directory" "--python needs a DIR" bash "$harness" --python
+  refused "HARNESS_PY_PACKAGES not a python3 package" "HARNESS_PY_PACKAGES names Debian python3-* packages, not 'numpy'" \
+    env HARNESS_PY_PACKAGES=numpy bash "$harness" --python "$work/pkg" "${ok_args[@]}"
 
   # The vcan0 path, with root and vcan0 stood in for: the scenarios here use no CAN.
   mkdir -p "$work/shim"
