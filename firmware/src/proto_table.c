@@ -90,6 +90,29 @@ const proto_enum_entry proto_traj_end_names[] = {
     {0, 0},
 };
 
+const proto_flag proto_status_flags[] = {
+    {PROTO_STATUS_HOMED, "homed", FW_DOC("homed")},
+    {PROTO_STATUS_DRIVES, "drives", FW_DOC("drives enabled")},
+    {PROTO_STATUS_ESTOP_IN, "estop_in", FW_DOC("e-stop input open")},
+    {PROTO_STATUS_SWITCHES_OFF, "switches_off",
+     FW_DOC("a high-end switch pressed or (once homed) a homing switch disagreeing with the step count")},
+    {PROTO_STATUS_ERROR_PASSIVE, "error_passive", FW_DOC("CAN error passive")},
+    {0, 0, 0},
+};
+
+const proto_flag_field proto_flag_fields[] = {
+    {PM_STATUS, 2, proto_status_flags},
+    {PM_COUNT, 0, 0},
+};
+
+const proto_flag *proto_field_flags(proto_msg m, int k)
+{
+    for (const proto_flag_field *f = proto_flag_fields; f->flags; ++f)
+        if (f->msg == m && f->field == k)
+            return f->flags;
+    return 0;
+}
+
 const proto_enum_def proto_enums[] = {
     {proto_state_names, "state", "state"},
     {proto_fault_names, "fault", "fault"},
@@ -222,9 +245,7 @@ const proto_def proto_table[PM_COUNT] = {
     {PM_STATUS, 0x20, "STATUS", PROTO_TO_HOST, 8, 7,
      {{"state", PF_U8, 0, 0, FW_STATE_COUNT - 1, "", 1.0, proto_state_names, FW_DOC("controller state")},
       {"fault", PF_U8, 1, 0, FW_FAULT_COUNT - 1, "", 1.0, proto_fault_names, FW_DOC("latched fault")},
-      {"flags", PF_U8, 2, 0, 255, "", 1.0, 0,
-       FW_DOC("bit 0 homed, 1 drives enabled, 2 e-stop input open, 3 a high-end switch pressed or (once "
-       "homed) a homing switch disagreeing with the step count, 4 CAN error passive")},
+      {"flags", PF_U8, 2, 0, 255, "", 1.0, 0, FW_DOC("bits")},
       {"queue_depth", PF_U8, 3, 0, 255, "", 1.0, 0, FW_DOC("trajectory points waiting")},
       {"queue_free", PF_U8, 4, 0, 255, "", 1.0, 0, FW_DOC("trajectory points that may still be sent")},
       {"last_seq", PF_U8, 5, 0, 255, "", 1.0, 0, FW_DOC("last accepted sequence number")},

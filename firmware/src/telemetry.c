@@ -8,15 +8,15 @@ static void send_status(fw_controller *c)
     const fw_view *v = &c->th.view;
     uint8_t flags = 0;
     if (v->flags & FW_VIEW_HOMED)
-        flags |= 1u;
+        flags |= PROTO_STATUS_HOMED;
     if (v->flags & FW_VIEW_DRIVES)
-        flags |= 2u;
+        flags |= PROTO_STATUS_DRIVES;
     if (v->flags & FW_VIEW_ESTOP_IN)
-        flags |= 4u;
+        flags |= PROTO_STATUS_ESTOP_IN;
     if (v->flags & FW_VIEW_SWITCHES_OFF)
-        flags |= 8u;
+        flags |= PROTO_STATUS_SWITCHES_OFF;
     if (v->flags & FW_VIEW_ERROR_PASSIVE)
-        flags |= 16u;
+        flags |= PROTO_STATUS_ERROR_PASSIVE;
     const int32_t s[7] = {v->state, v->fault, flags, (int32_t)v->traj_depth,
                           (int32_t)(FW_TRAJ_CAPACITY - v->traj_depth), c->th.last_seq, c->th.counter++};
     fw_send(c, PM_STATUS, s);

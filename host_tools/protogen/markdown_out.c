@@ -4,6 +4,7 @@
 
 #include "decimal_text.h"
 #include "field_type.h"
+#include "flags_text.h"
 #include "fw/command_table.h"
 #include "fw/params.h"
 #include "fw/proto.h"
@@ -98,8 +99,14 @@ static int messages(FILE *out)
                         f->name, f->scale, f->unit, sizeof cell - 1);
                 return -1;
             }
+            char meaning[4096];
+            if (field_meaning((proto_msg)i, k, meaning, sizeof meaning) != 0) {
+                fprintf(stderr, "protogen: %s.%s: its meaning does not print in %zu characters\n", d->name, f->name,
+                        sizeof meaning - 1);
+                return -1;
+            }
             fprintf(out, "| %u | `%s` | %s | %ld .. %ld | %s | %s%s |\n", f->offset, f->name, ft_name(f->type),
-                    (long)f->min, (long)f->max, cell, f->doc, f->values ? " (values below)" : "");
+                    (long)f->min, (long)f->max, cell, meaning, f->values ? " (values below)" : "");
         }
     }
     return 0;

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "flags_text.h"
 #include "decimal_text.h"
 #include "field_type.h"
 #include "fw/params.h"
@@ -75,7 +76,13 @@ static int messages(FILE *out)
                 fprintf(out, ", \"%s\",\n         ", ek);
             else
                 fprintf(out, ", None,\n         ");
-            py_str(out, f->doc);
+            char meaning[4096];
+            if (field_meaning((proto_msg)i, k, meaning, sizeof meaning) != 0) {
+                fprintf(stderr, "protogen: %s.%s: its meaning does not print in %zu characters\n", d->name, f->name,
+                        sizeof meaning - 1);
+                return -1;
+            }
+            py_str(out, meaning);
             fprintf(out, "),\n");
         }
         fprintf(out, "    ), ");
@@ -165,6 +172,10 @@ int gen_python(FILE *out)
                  "# (within the free slots ACK and STATUS report).\n"
                  "TRAJ_LAST = %u\nTRAJ_FIRST = %u\nTRAJ_WINDOW = %d\n\n",
             PROTO_NODE_BITS, PROTO_NODE_MASK, PROTO_BROADCAST, PROTO_TRAJ_LAST, PROTO_TRAJ_FIRST, PROTO_TRAJ_WINDOW);
+    fprintf(out, "# STATUS's flags: the bit of each.\nSTATUS_FLAGS = {\n");
+    for (const proto_flag *b = proto_status_flags; b->name; ++b)
+        fprintf(out, "    \"%s\": 0x%02lX,\n", b->name, (unsigned long)b->mask);
+    fprintf(out, "}\n\n");
     enumerations(out);
     codes(out);
     if (messages(out) != 0)

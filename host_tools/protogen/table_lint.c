@@ -94,6 +94,20 @@ int table_lint(const proto_def *table, int n, FILE *err)
                 for (const proto_enum_entry *e = f->values; e->name; ++e)
                     if (!is_ident(e->name))
                         PROBLEM("%s.%s: value %d's name '%s' is not an identifier", m, fn, (int)e->value, e->name);
+            /* The bits of a field of the firmware's own table (a planted table in a test has none). */
+            const proto_flag *bits = table == proto_table ? proto_field_flags((proto_msg)i, k) : 0;
+            uint32_t seen = 0;
+            for (const proto_flag *b = bits; b && b->name; ++b) {
+                if (!is_ident(b->name))
+                    PROBLEM("%s.%s: flag '%s' is not an identifier", m, fn, b->name);
+                if (!b->doc || !b->doc[0] || !is_plain(b->doc))
+                    PROBLEM("%s.%s: flag %s's doc is missing or holds a control character, '\"', '|' or non-ASCII", m,
+                            fn, b->name);
+                if (b->mask == 0 || (b->mask & (b->mask - 1)) != 0 || b->mask > (uint32_t)f->max || (seen & b->mask))
+                    PROBLEM("%s.%s: flag %s's mask 0x%lx is not one bit of its own inside the field", m, fn, b->name,
+                            (unsigned long)b->mask);
+                seen |= b->mask;
+            }
         }
     }
     return problems;

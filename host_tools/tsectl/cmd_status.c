@@ -13,8 +13,9 @@ static void print_status(const proto_message *m, const telemetry *t, int json)
     if (json) {
         printf("{\"state\": \"%s\", \"fault\": \"%s\", \"homed\": %s, \"enabled\": %s, \"estop_input\": %s, "
                "\"limit\": %s, \"queue_depth\": %d, \"queue_free\": %d, \"last_seq\": %d, \"counter\": %d",
-               st, fault, fl & 1 ? "true" : "false", fl & 2 ? "true" : "false", fl & 4 ? "true" : "false",
-               fl & 8 ? "true" : "false", (int)m->v[3], (int)m->v[4], (int)m->v[5], (int)m->v[6]);
+               st, fault, fl & PROTO_STATUS_HOMED ? "true" : "false", fl & PROTO_STATUS_DRIVES ? "true" : "false",
+               fl & PROTO_STATUS_ESTOP_IN ? "true" : "false", fl & PROTO_STATUS_SWITCHES_OFF ? "true" : "false",
+               (int)m->v[3], (int)m->v[4], (int)m->v[5], (int)m->v[6]);
         if (t && telemetry_has_pose(t))
             printf(", \"pose\": [%.6f, %.6f, %.6f, %.6f, %.6f, %.6f]", t->pose[0], t->pose[1], t->pose[2], t->pose[3],
                    t->pose[4], t->pose[5]);
@@ -29,15 +30,16 @@ static void print_status(const proto_message *m, const telemetry *t, int json)
         return;
     }
     printf("state %s, fault %s, %s, drives %s, queue %d (free %d), last seq %d%s%s\n", st, fault,
-           fl & 1 ? "homed" : "not homed", fl & 2 ? "on" : "off", (int)m->v[3], (int)m->v[4], (int)m->v[5],
-           fl & 4 ? ", e-stop input open" : "", fl & 8 ? ", a switch disagrees" : "");
+           fl & PROTO_STATUS_HOMED ? "homed" : "not homed", fl & PROTO_STATUS_DRIVES ? "on" : "off", (int)m->v[3],
+           (int)m->v[4], (int)m->v[5], fl & PROTO_STATUS_ESTOP_IN ? ", e-stop input open" : "",
+           fl & PROTO_STATUS_SWITCHES_OFF ? ", a switch disagrees" : "");
     if (!t)
         return;
     if (telemetry_has_pose(t))
         printf("pose %.6f %.6f %.6f m, %.6f %.6f %.6f rad\n", t->pose[0], t->pose[1], t->pose[2], t->pose[3],
                t->pose[4], t->pose[5]);
     else
-        printf("pose unknown (%s)\n", fl & 1 ? "no telemetry: telemetry_ms is 0?" : "not homed");
+        printf("pose unknown (%s)\n", fl & PROTO_STATUS_HOMED ? "no telemetry: telemetry_ms is 0?" : "not homed");
     if (telemetry_has_slides(t))
         printf("slides %.6f %.6f %.6f %.6f %.6f %.6f m\n", t->slides[0], t->slides[1], t->slides[2], t->slides[3],
                t->slides[4], t->slides[5]);
@@ -60,7 +62,7 @@ int run_status(tlink *l, int argc, char **argv)
     /* The pose comes with the telemetry (every telemetry_ms, 50 ms by default); only once homed. */
     telemetry t;
     memset(&t, 0, sizeof t);
-    const int homed = st.v[2] & 1;
+    const int homed = (st.v[2] & PROTO_STATUS_HOMED) != 0;
     const uint64_t end = link_now_us() + 500000u;
     proto_message m;
     while (link_now_us() < end && !tsectl_interrupted) {

@@ -290,13 +290,14 @@ int traj_prepare(tlink *l, bool need_ready, traj_session *s)
     const proto_message *st = &s->st;
     if (s->seq < 0)
         return EXIT_TIMEOUT;
-    if (need_ready && (st->v[0] != FW_STATE_IDLE || !(st->v[2] & 1))) {
+    const int homed = (st->v[2] & PROTO_STATUS_HOMED) != 0;
+    if (need_ready && (st->v[0] != FW_STATE_IDLE || !homed)) {
         ctl_error("not started: a trajectory starts at rest from a homed, enabled controller, and node %u is %s%s "
                   "(%s)",
-                  l->node, proto_enum_name(proto_state_names, st->v[0]), st->v[2] & 1 ? "" : " and not homed",
+                  l->node, proto_enum_name(proto_state_names, st->v[0]), homed ? "" : " and not homed",
                   st->v[0] == FW_STATE_FAULT || st->v[0] == FW_STATE_ESTOP ? "clear, enable and home first"
                   : st->v[0] == FW_STATE_DISABLED                          ? "enable and home first"
-                  : !(st->v[2] & 1)                                        ? "home first"
+                  : !homed                                                 ? "home first"
                                                                            : "wait for the running motion to end");
         return EXIT_REJECTED;
     }

@@ -14,6 +14,15 @@ TRAJ_LAST = 1
 TRAJ_FIRST = 2
 TRAJ_WINDOW = 4
 
+# STATUS's flags: the bit of each.
+STATUS_FLAGS = {
+    "homed": 0x01,
+    "drives": 0x02,
+    "estop_in": 0x04,
+    "switches_off": 0x08,
+    "error_passive": 0x10,
+}
+
 # Named values of the enumerated fields.
 ENUMS = {
     "state": {0: "boot", 1: "disabled", 2: "homing", 3: "idle", 4: "moving", 5: "stopping", 6: "fault", 7: "estop"},
@@ -173,7 +182,7 @@ MESSAGES = {
         ("fault", "u8", 1, 0, 10, "", 1.0, "fault",
          "latched fault"),
         ("flags", "u8", 2, 0, 255, "", 1.0, None,
-         "bit 0 homed, 1 drives enabled, 2 e-stop input open, 3 a high-end switch pressed or (once homed) a homing switch disagreeing with the step count, 4 CAN error passive"),
+         "bits: bit 0 homed (homed); bit 1 drives (drives enabled); bit 2 estop_in (e-stop input open); bit 3 switches_off (a high-end switch pressed or (once homed) a homing switch disagreeing with the step count); bit 4 error_passive (CAN error passive)"),
         ("queue_depth", "u8", 3, 0, 255, "", 1.0, None,
          "trajectory points waiting"),
         ("queue_free", "u8", 4, 0, 255, "", 1.0, None,

@@ -149,9 +149,10 @@ _SLIDES = ("A1", "B1", "A2", "B2", "A3", "B3")
 
 
 def _status_of(v):
-    f = v["flags"]
-    return Status(_enum("state", v["state"]), _enum("fault", v["fault"]), bool(f & 1), bool(f & 2), bool(f & 4),
-                  bool(f & 8), bool(f & 16), v["queue_depth"], v["queue_free"], v["last_seq"], v["counter"])
+    f, bit = v["flags"], _P.STATUS_FLAGS
+    return Status(_enum("state", v["state"]), _enum("fault", v["fault"]), bool(f & bit["homed"]),
+                  bool(f & bit["drives"]), bool(f & bit["estop_in"]), bool(f & bit["switches_off"]),
+                  bool(f & bit["error_passive"]), v["queue_depth"], v["queue_free"], v["last_seq"], v["counter"])
 
 
 class TseError(Exception):

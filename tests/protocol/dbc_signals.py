@@ -103,7 +103,7 @@ def check(reader, frames, messages):
             lo, hi = f.type_range()
             want_sig = dict(start=f.offset * 8, size=f.bits, signed=f.signed, little=True, factor=f.scale_dec,
                             offset=Decimal(0), min=Decimal(f.min) * f.scale_dec, max=Decimal(f.max) * f.scale_dec,
-                            unit=f.unit, comment=f.doc)
+                            unit=f.unit, comment=f.meaning())
             bad = [f"{k} {s[k]!r}, the table says {v!r}" for k, v in want_sig.items() if s[k] != v]
             if not lo <= f.min <= f.max <= hi:
                 bad.append(f"the table's range {f.min}..{f.max} is outside {f.type} ({lo}..{hi})")

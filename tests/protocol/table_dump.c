@@ -3,6 +3,7 @@
  * going through protogen (the program under test):
  *   M <name> <function> <dlc> <doc>
  *   F <message> <field> <type u8..i32> <offset> <min> <max> <scale %.17g> <unit> <doc>
+ *   B <message> <field> <mask> <name> <doc>    (each bit of a field of bits, after its F line)
  * A string holding a tab or a line break would break the format: that is reported, exit 1. */
 #include <stdio.h>
 #include <string.h>
@@ -44,6 +45,11 @@ int main(void)
             ok &= clean("a field name", f->name) & clean("a unit", f->unit) & clean("a field doc", f->doc);
             printf("F\t%s\t%s\t%s\t%u\t%ld\t%ld\t%.17g\t%s\t%s\n", d->name, f->name ? f->name : "", type_text(f->type),
                    f->offset, (long)f->min, (long)f->max, f->scale, f->unit ? f->unit : "", f->doc ? f->doc : "");
+            for (const proto_flag *b = proto_field_flags((proto_msg)i, k); b && b->name; ++b) {
+                ok &= clean("a flag name", b->name) & clean("a flag doc", b->doc);
+                printf("B\t%s\t%s\t%lu\t%s\t%s\n", d->name, f->name ? f->name : "", (unsigned long)b->mask, b->name,
+                       b->doc ? b->doc : "");
+            }
         }
     }
     return ok ? 0 : 1;

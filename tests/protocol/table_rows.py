@@ -14,6 +14,7 @@ BROADCAST = {"ESTOP": "ESTOP_ALL", "STOP": "STOP_ALL"}
 class Field:
     def __init__(self, name, type_, offset, lo, hi, scale, unit, doc):
         self.name, self.type, self.unit, self.doc = name, type_, unit, doc
+        self.flags = []  # (bit number, name, doc) of a field of bits
         self.offset, self.min, self.max = int(offset), int(lo), int(hi)
         self.scale = float(scale)
         self.scale_dec = Decimal(repr(self.scale))
@@ -21,6 +22,12 @@ class Field:
             raise ValueError(f"unknown field type {type_!r} of {name}")
         self.signed = type_[0] == "i"
         self.bits = int(type_[1:])
+
+    def meaning(self):
+        """What the documents say of the field: its doc, and each bit's number, name and doc (protogen's
+        words, written out here from the table's entries)."""
+        return self.doc + "".join(f"{':' if i == 0 else ';'} bit {bit} {name} ({doc})"
+                                  for i, (bit, name, doc) in enumerate(self.flags))
 
     def type_range(self):
         if self.signed:
@@ -48,6 +55,12 @@ def load(dumper):
             messages[cols[1]] = Message(*cols[1:])
         elif cols[0] == "F" and len(cols) == 10 and cols[1] in messages:
             messages[cols[1]].fields.append(Field(*cols[2:]))
+        elif (cols[0] == "B" and len(cols) == 6 and cols[1] in messages and messages[cols[1]].fields
+              and messages[cols[1]].fields[-1].name == cols[2]):
+            mask = int(cols[3])
+            if mask <= 0 or mask & (mask - 1):
+                raise ValueError(f"table_dump line {number}: flag {cols[4]}'s mask {mask} is not one bit")
+            messages[cols[1]].fields[-1].flags.append((mask.bit_length() - 1, cols[4], cols[5]))
         else:
             raise ValueError(f"table_dump line {number}: cannot read {line!r}")
     if not messages:

@@ -16,6 +16,14 @@
 #define PROTO_BROADCAST 0u
 #define PROTO_MAX_FIELDS 7
 
+/* STATUS's flags, one bit each; proto_status_flags names and documents them (docs/protocol.md,
+ * the DBC and the Python tables are written from it). */
+#define PROTO_STATUS_HOMED 0x01u
+#define PROTO_STATUS_DRIVES 0x02u
+#define PROTO_STATUS_ESTOP_IN 0x04u
+#define PROTO_STATUS_SWITCHES_OFF 0x08u
+#define PROTO_STATUS_ERROR_PASSIVE 0x10u
+
 /* TRAJ_COMMIT's flags. */
 #define PROTO_TRAJ_LAST 1u  /* the trajectory's last row */
 #define PROTO_TRAJ_FIRST 2u /* its first row: starts it */
@@ -44,6 +52,13 @@ typedef struct {
     const char *name;
     const char *words;
 } proto_code;
+
+/* The bits of a flags field: mask, name, meaning.  Terminated by a NULL name. */
+typedef struct {
+    uint32_t mask;
+    const char *name;
+    const char *doc;
+} proto_flag;
 
 typedef struct {
     const char *name;
@@ -120,6 +135,18 @@ typedef struct {
     const char *title;
 } proto_enum_def;
 extern const proto_enum_def proto_enums[];
+
+/* The fields of bits, each with its bits.  Terminated by a NULL flags. */
+typedef struct {
+    proto_msg msg;
+    int field;
+    const proto_flag *flags;
+} proto_flag_field;
+extern const proto_flag proto_status_flags[];
+extern const proto_flag_field proto_flag_fields[];
+
+/* The bits of message m's field k, or NULL when it is not a field of bits. */
+const proto_flag *proto_field_flags(proto_msg m, int k);
 extern const proto_enum_entry proto_traj_end_names[];
 
 /* REJECT's field for timing, divided by 16 (fw_slide_limit): the limit the demand is against. */
