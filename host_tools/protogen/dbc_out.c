@@ -34,11 +34,8 @@ static int comments(FILE *out, proto_msg m, unsigned id)
     fprintf(out, "CM_ BO_ %u \"%s\";\n", id, d->doc);
     for (int k = 0; k < d->nfields; ++k) {
         char meaning[4096];
-        if (field_meaning(m, k, meaning, sizeof meaning) != 0) {
-            fprintf(stderr, "protogen: %s.%s: its meaning does not print in %zu characters\n", d->name,
-                    d->fields[k].name, sizeof meaning - 1);
+        if (field_meaning(m, k, meaning, sizeof meaning) != 0)
             return -1;
-        }
         fprintf(out, "CM_ SG_ %u %s \"%s\";\n", id, d->fields[k].name, meaning);
     }
     return 0;

@@ -12,5 +12,9 @@ int field_meaning(proto_msg m, int k, char *buf, size_t n)
             ++bit;
         w += snprintf(buf + w, n - (size_t)w, "%s bit %d %s (%s)", b == flags ? ":" : ";", bit, b->name, b->doc);
     }
-    return w >= 0 && (size_t)w < n ? 0 : -1;
+    if (w >= 0 && (size_t)w < n)
+        return 0;
+    fprintf(stderr, "protogen: %s.%s: its meaning does not print in %zu characters\n", proto_table[m].name,
+            proto_table[m].fields[k].name, n - 1);
+    return -1;
 }

@@ -8,7 +8,7 @@
 #include "fw/proto_table.h"
 
 /* Writes the meaning of message m's field k into buf (n bytes).  Returns 0, or -1 when it does not
- * fit. */
+ * fit, which it reports on stderr naming the field. */
 int field_meaning(proto_msg m, int k, char *buf, size_t n);
 
 #endif

@@ -100,11 +100,8 @@ static int messages(FILE *out)
                 return -1;
             }
             char meaning[4096];
-            if (field_meaning((proto_msg)i, k, meaning, sizeof meaning) != 0) {
-                fprintf(stderr, "protogen: %s.%s: its meaning does not print in %zu characters\n", d->name, f->name,
-                        sizeof meaning - 1);
+            if (field_meaning((proto_msg)i, k, meaning, sizeof meaning) != 0)
                 return -1;
-            }
             fprintf(out, "| %u | `%s` | %s | %ld .. %ld | %s | %s%s |\n", f->offset, f->name, ft_name(f->type),
                     (long)f->min, (long)f->max, cell, meaning, f->values ? " (values below)" : "");
         }

@@ -77,11 +77,8 @@ static int messages(FILE *out)
             else
                 fprintf(out, ", None,\n         ");
             char meaning[4096];
-            if (field_meaning((proto_msg)i, k, meaning, sizeof meaning) != 0) {
-                fprintf(stderr, "protogen: %s.%s: its meaning does not print in %zu characters\n", d->name, f->name,
-                        sizeof meaning - 1);
+            if (field_meaning((proto_msg)i, k, meaning, sizeof meaning) != 0)
                 return -1;
-            }
             py_str(out, meaning);
             fprintf(out, "),\n");
         }
