@@ -121,12 +121,14 @@ void fk_check_burst(oracle_model *o, rig *r)
         FUZZ_CHECK(worst <= FK_Q_TOL);
         return;
     }
-    /* Homed, yet no pose sent: the slides must be at no pose (the controller never leaves them
-     * where the kinematics has none), or the float solver missed one. */
+    /* Homed, yet no pose sent: counted for the report only (whether the double FK finds a pose
+     * where the float one found none), so solved only when the report is asked for. */
+    ++st.no_fk_sent;
+    if (!st.reported)
+        return;
     double seed[6];
     for (int k = 0; k < 6; ++k)
         seed[k] = (double)in.pose[k];
-    ++st.no_fk_sent;
     if (fk_oracle_pose(kin, o->tel_q, seed, pose, &qe) != 0)
         ++st.none_found;
 }
