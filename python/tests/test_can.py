@@ -193,3 +193,48 @@ def test_watch_ends_on_silence_and_on_close(quiet_controller):
     import threading
     threading.Timer(0.3, ctl.close).start()
     assert list(w) == []
+
+
+def _send_period(bus, slides, pose, upto=6):
+    """The controller's telemetry period (telemetry.c: SLIDES_A..C, then FK_A..C), its first upto frames."""
+    raw_s, raw_p = [round(v * 1e9) for v in slides], [round(v * 1e6) for v in pose]
+    frames = [tcan.encode(f"SLIDES_{c}", 3, **{f"s_a{k + 1}": raw_s[2 * k], f"s_b{k + 1}": raw_s[2 * k + 1]})
+              for k, c in enumerate("ABC")]
+    frames += [tcan.encode("FK_A", 3, x=raw_p[0], y=raw_p[1]), tcan.encode("FK_B", 3, z=raw_p[2], roll=raw_p[3]),
+               tcan.encode("FK_C", 3, pitch=raw_p[4], yaw=raw_p[5])]
+    for f in frames[:upto]:
+        bus.send(f)
+
+
+def test_a_watch_never_mixes_two_telemetry_periods(quiet_controller):
+    """A watch that ends half way through a period (on the bus the socket's filter then stops the
+    rest), and a new watch whose first frame is the last of a later period: the new watch's first
+    sample is a whole period of its own, not the old period's slides and x, y, z, roll with the new
+    pitch and yaw (what Controller.path once planned from: the pose before the last trajectory)."""
+    import threading
+    import time
+    ctl, _ = quiet_controller
+    sender = pycan.Bus(interface="virtual", channel=f"tse-test-{os.getpid()}")
+    try:
+        old_s, old_p = [0.1 * k for k in range(6)], [0.1, -0.05, 1.1, 0.1, -0.05, 0.2]
+        new_s, new_p = [0.2 + 0.1 * k for k in range(6)], [0.12, -0.06, 1.1, 0.1, -0.05, 0.2]
+        # Homed (the fake's flags): a period is published with its pose.
+        sender.send(tcan.encode("STATUS", 3, state=tcan._enum_value("state", "idle"), fault=0, flags=3,
+                                queue_depth=0, queue_free=32, last_seq=0, counter=0))
+        w = ctl.watch(timeout=1.0)
+        threading.Timer(0.1, lambda: (_send_period(sender, old_s, old_p), _send_period(sender, old_s, old_p, upto=5))).start()
+        first = next(w)
+        assert first.pose == pytest.approx(old_p) and first.slides == pytest.approx(old_s)
+        time.sleep(0.3)  # the reader has taken the half period
+        w.close()
+
+        w = ctl.watch(timeout=1.0)
+        # The rest of a period (its FK_C), then whole periods.
+        tail = tcan.encode("FK_C", 3, pitch=round(new_p[4] * 1e6), yaw=round(new_p[5] * 1e6))
+        threading.Timer(0.1, lambda: (sender.send(tail), _send_period(sender, new_s, new_p),
+                                      _send_period(sender, new_s, new_p))).start()
+        first = next(w)
+        w.close()
+        assert first.pose == pytest.approx(new_p) and first.slides == pytest.approx(new_s)
+    finally:
+        sender.shutdown()

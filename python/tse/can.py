@@ -144,7 +144,8 @@ acknowledged, the rows per second that makes, and the rows per second until the 
 first filled (this client's own pace; None if it never filled: then rows_per_s is)."""
 
 _AT_REST = ("idle", "disabled", "fault", "estop")
-_TELEMETRY_FUNCTIONS = frozenset(_P.MESSAGES[m][0] for m in ("SLIDES_A", "SLIDES_B", "SLIDES_C", "FK_A", "FK_B", "FK_C"))
+_TELEMETRY_ORDER = ("SLIDES_A", "SLIDES_B", "SLIDES_C", "FK_A", "FK_B", "FK_C")  # a period's frames as sent
+_TELEMETRY_FUNCTIONS = frozenset(_P.MESSAGES[m][0] for m in _TELEMETRY_ORDER)
 _SLIDES = ("A1", "B1", "A2", "B2", "A3", "B3")
 
 
@@ -482,7 +483,11 @@ class Controller:
         self._traj_end = None     # the newest TRAJ_END's fields
         self._serial = 0
         self._watchers = []
-        self._tel = {}
+        # One telemetry period in the making: its frames in the order the controller sends them
+        # (SLIDES_A..C, FK_A..C).  _tel_epoch counts watches begun; a period begun before the
+        # newest is dropped (the reader's side of the hand-over, so no lock).
+        self._tel = []
+        self._tel_epoch = self._tel_epoch_seen = 0
         self._closed = False
         self._reader = threading.Thread(target=self._read, name=f"tse-can-reader-{node}", daemon=True)
         self._reader.start()
@@ -634,21 +639,30 @@ class Controller:
             self._cond.notify_all()
 
     def _telemetry(self, name, v, stamp):
+        """Takes a telemetry frame into the period in the making and publishes the period when it
+        is whole: a Telemetry is made of one period's frames only.  A period starts at SLIDES_A;
+        a frame out of its order, or a period begun before the newest watch (whose frames may have
+        stopped at the socket's filter half way, and whose rest may come long after), is dropped
+        until the next SLIDES_A."""
         tel = self._tel
-        if name.startswith("SLIDES_"):
-            k = "ABC".index(name[-1])
-            tel[k] = (v[f"s_a{k + 1}"] * 1e-9, v[f"s_b{k + 1}"] * 1e-9)
-            if k == 0:
-                for j in (3, 4, 5):
-                    tel.pop(j, None)  # a new period: never mix two
+        if self._tel_epoch_seen != self._tel_epoch:
+            self._tel_epoch_seen = self._tel_epoch
+            tel.clear()
+        k = _TELEMETRY_ORDER.index(name)
+        if k == 0:
+            tel.clear()
+        elif len(tel) != k:
+            tel.clear()
+            return
+        if k < 3:
+            tel.append((v[f"s_a{k + 1}"] * 1e-9, v[f"s_b{k + 1}"] * 1e-9))
             homed = self._status is not None and self._status.homed
-            if k == 2 and not homed and all(j in tel for j in (0, 1, 2)):
+            if k == 2 and not homed:
                 self._publish(Telemetry(stamp, tel[0] + tel[1] + tel[2], None, self._state()))
         else:
-            k = "ABC".index(name[-1])
-            keys = (("x", "y"), ("z", "roll"), ("pitch", "yaw"))[k]
-            tel[3 + k] = (v[keys[0]] * 1e-6, v[keys[1]] * 1e-6)
-            if k == 2 and all(j in tel for j in range(6)):
+            keys = (("x", "y"), ("z", "roll"), ("pitch", "yaw"))[k - 3]
+            tel.append((v[keys[0]] * 1e-6, v[keys[1]] * 1e-6))
+            if k == 5:
                 self._publish(Telemetry(stamp, tel[0] + tel[1] + tel[2], tel[3] + tel[4] + tel[5], self._state()))
 
     def _state(self):
@@ -1104,6 +1118,7 @@ class Controller:
         has come for timeout s (None: never) or the controller is closed.  Up to maxlen periods wait while the caller is
         busy; beyond that the newest are dropped."""
         q = queue.Queue(maxsize=maxlen)
+        self._tel_epoch += 1
         self._watchers.append(q)
         self._filter_telemetry()
         try:
