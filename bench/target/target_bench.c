@@ -15,6 +15,7 @@
 #include "fw/runtime.h"
 #include "fw/stepgen.h"
 #include "hal_stm32f4/semihost.h"
+#include "tse/enclose.h"
 #include "tse/fk.h"
 #include "tse/ik.h"
 
@@ -103,6 +104,30 @@ static void bench_kinematics(void)
         memcpy(prev, p, sizeof prev);
     }
     report("fk_float", samples, fk, 0);
+    /* A piece of the path around each pose, as validation encloses them: the position's and the
+     * orientation's change over a neighbourhood of +-1 path step (the orientation's rates taken
+     * as the angles' differences: the cost, not the proof, is what is measured here). */
+    unsigned enc = 0;
+    for (unsigned i = 1; i <= N; i += 2) {
+        tse_real a[6], b[6];
+        path_pose(i, N, p);
+        path_pose(i - 1u, N, a);
+        path_pose(i + 1u, N, b);
+        tse_ik(&geom, p, NULL, &r);
+        if (r.status != TSE_OK)
+            continue;
+        tse_piece pc = {{0}, {0}, TSE_R(0.5), TSE_R(1e-7)};
+        for (int k = 0; k < 3; ++k) {
+            pc.lin[k] = (b[k] - a[k]) * TSE_R(0.5);
+            pc.omega[k] = (b[3 + k] - a[3 + k]) * TSE_R(0.5);
+        }
+        tse_enclosure e;
+        uint32_t n;
+        MEASURE(n, tse_ik_enclose(&geom, &pc, p, &r, &e));
+        if (e.proven)
+            samples[enc++] = n;
+    }
+    report("enclose_float", samples, enc, 0);
 }
 
 static void bench_stepgen(void)

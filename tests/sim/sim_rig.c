@@ -10,6 +10,11 @@
 
 #include <cmocka.h>
 
+#if SIM_RIG_BOARD_TIME
+static void board_step(void *arg);
+static void board_control(void *arg);
+#endif
+
 void rig_boot(sim_rig *r, double start_m)
 {
     memset(r, 0, sizeof *r);
@@ -24,7 +29,13 @@ void rig_boot(sim_rig *r, double start_m)
     hal.can = fault_can_hal(&r->can);
     hal.inputs = r->in = fault_inputs_hal(&r->inputs);
     hal.stepper = fault_stepper_hal(&r->stepper);
+#if SIM_RIG_BOARD_TIME
+    /* The thread waits for the tick as the board's does: time runs to the next interrupt. */
+    bt_stop(); /* fw_init's solves are before the board's time starts */
+    const fw_config cfg = {1, RIG_CONTROL_HZ, RIG_STEP_HZ, bt_await, &r->bt};
+#else
     const fw_config cfg = {1, RIG_CONTROL_HZ, RIG_STEP_HZ, NULL, NULL};
+#endif
     r->fw = fw_init(&r->fw_mem, &hal, &cfg);
     assert_non_null(r->fw);
     /* The plant is the machine the default parameters describe (as tse-sim builds it). */
@@ -39,6 +50,10 @@ void rig_boot(sim_rig *r, double start_m)
     assert_int_equal(plant_init(&r->plant, &pc, &pk, s0), 0);
     r->host_alive = true;
     r->seq = 1;
+#if SIM_RIG_BOARD_TIME
+    const bt_hooks hooks = {board_step, board_control, r, &r->bus.now_us};
+    bt_init(&r->bt, RIG_STEP_HZ, RIG_CONTROL_HZ, &hooks);
+#endif
 }
 
 static bool moves_robot(fw_state s)
@@ -107,6 +122,56 @@ static void collect(sim_rig *r)
     r->bus.tx_count = 0;
 }
 
+#if SIM_RIG_BOARD_TIME
+static void board_step(void *arg)
+{
+    sim_rig *r = arg;
+    fw_step_tick(r->fw);
+    plant_tick(&r->plant);
+}
+
+/* A control tick where it falls; then the period before it is checked, up to this tick's end (the
+ * tick completes what the thread may have begun meanwhile: an e-stop frame read during a
+ * validation halts the drives at once, and the tick then makes the state ESTOP). */
+static void board_control(void *arg)
+{
+    sim_rig *r = arg;
+    const bool estop_open = r->in.estop(r->in.ctx);
+    const fw_state s0 = fw_state_of(r->fw);
+    const uint64_t emitted0 = r->plant.pulses + r->stepper.lost_total;
+    fw_control_tick(r->fw);
+    if (r->bt.control_lost > r->allowed_lost_ticks)
+        fail_msg("t = %.3f s: a control tick was lost: the one before it was still pending (the thread's work "
+                 "kept it out for a whole period)", (double)r->bus.now_us * 1e-6);
+    if (r->period_open)
+        check(r, r->p_s0, r->p_estop_open, r->p_emitted0);
+    r->p_estop_open = estop_open;
+    r->p_s0 = s0;
+    r->p_emitted0 = emitted0;
+    r->period_open = true;
+}
+
+static void board_poll(void *arg)
+{
+    sim_rig *r = arg;
+    fw_poll(r->fw);
+    if (r->after_poll)
+        r->after_poll(r->after_poll_arg);
+}
+
+void rig_tick(sim_rig *r)
+{
+    const uint64_t period = r->bt.control_period;
+    bt_thread(&r->bt, board_poll, r);
+    bt_idle_until(&r->bt, (r->bt.now / period + 1u) * period);
+    const uint64_t ticks = r->bt.now / period;
+    for (; r->ticks < ticks; ++r->ticks) {
+        const fw_state s = fw_state_of(r->fw);
+        ++r->state_ms[s < FW_STATE_COUNT ? s : 0];
+    }
+    collect(r);
+}
+#else
 /* The rig's part of each call of a period: the test's hook after the poll, the plant's step. */
 static void ran(void *ctx, fw_ran what)
 {
@@ -130,13 +195,21 @@ void rig_tick(sim_rig *r)
     collect(r);
     check(r, s0, estop_open, emitted0);
 }
+#endif
 
 void rig_run(sim_rig *r, uint32_t ms)
 {
-    for (uint32_t m = 0; m < ms; ++m) {
-        if (r->host_alive && r->ticks % 10 == 0) {
+    const uint64_t end = r->ticks + ms;
+    while (r->ticks < end) {
+#if SIM_RIG_BOARD_TIME
+        const bool due = r->ticks >= r->next_heartbeat; /* a long work may pass a multiple of 10 */
+#else
+        const bool due = r->ticks % 10 == 0;
+#endif
+        if (r->host_alive && due) {
             const int32_t hb[1] = {(int32_t)(r->ticks / 10 % 256)};
             rig_send(r, PM_HOST_HEARTBEAT, hb);
+            r->next_heartbeat = r->ticks + 10u;
         }
         rig_tick(r);
     }

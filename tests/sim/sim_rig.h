@@ -30,6 +30,9 @@
 #include "hal_fault/fault_inputs.h"
 #include "hal_fault/fault_stepper.h"
 #include "hal_posix/plant.h"
+#if SIM_RIG_BOARD_TIME
+#include "board_time.h"
+#endif
 
 #define RIG_CONTROL_HZ 1000u
 #define RIG_STEP_HZ 100000u
@@ -64,13 +67,28 @@ typedef struct {
     int64_t offset[6];        /* count - (taken + lost) of each slide since the last homing */
     uint64_t lost_at_zero;    /* the fault layer's lost steps when homing last set the zero */
     uint64_t poses_checked;   /* control periods whose true slides the double FK placed (check) */
+    uint64_t next_heartbeat;  /* the control period of the host's next heartbeat */
+#if SIM_RIG_BOARD_TIME
+    /* Built with SIM_RIG_BOARD_TIME (the *_board tests): the board's timing (board_time.h).  The
+     * thread's work (a poll, whatever it costs) is charged at 168 MHz and preempted by the control
+     * and step ticks where they come due, as on the board; a control period is then a
+     * millisecond of board time, and the checks above run at every control tick for the period
+     * before it, wherever the tick falls (inside a frame's handling too). */
+    board_time bt;
+    uint64_t allowed_lost_ticks; /* control ticks the test lets be lost (else the rig fails at one) */
+    bool period_open;         /* a control tick has run: its period is checked at the next */
+    bool p_estop_open;
+    fw_state p_s0;
+    uint64_t p_emitted0;
+#endif
 } sim_rig;
 
 /* A controller with the default parameters, the plant built from them, its slides at start_m;
  * no fault configured (delay_us 20 ms, as tse-sim's default, for a test that delays).  Time is 0. */
 void rig_boot(sim_rig *r, double start_m);
 
-/* One control period; then the checks above. */
+/* One control period; then the checks above.  Board timing: the thread's work once, then the
+ * board idles to the next period's start (a long work runs past it, its periods elapse inside). */
 void rig_tick(sim_rig *r);
 /* ms control periods, with a heartbeat every 10 ms while host_alive. */
 void rig_run(sim_rig *r, uint32_t ms);

@@ -247,9 +247,11 @@ static void begin(const hal_can_frame *f)
 }
 
 /* While a commit is validated the controller reads the bus ahead (fw/work.h: heartbeats taken, a
- * STOP seen) and handles what it read after the commit, in order.  Those frames wait here: the
- * handling of the next begins once the one before has been answered, or has been passed by an
- * answer naming another function, or at the end of the poll. */
+ * STOP seen) and handles what it read after the commit, in order; so it does while any command
+ * waits for the control tick to take it (fw/runtime.h), which on the board's timing (the *_board
+ * build) is a wait of up to a control period.  Those frames wait here: the handling of the next
+ * begins once the one before has been answered, or has been passed by an answer naming another
+ * function, or at the end of the poll. */
 #define AHEAD 64u
 static struct {
     hal_can_frame f[AHEAD];
@@ -261,7 +263,13 @@ static bool validating(void)
     if (!cur.open || cur.answers > 0 || (cur.f.id & PROTO_NODE_MASK) != NODE)
         return false;
     const proto_def *d = proto_lookup((uint8_t)(cur.f.id >> PROTO_NODE_BITS), PROTO_TO_CONTROLLER);
+#if SIM_RIG_BOARD_TIME
+    /* Any command that is answered: it may wait for the tick. */
+    return d && cur.f.len == d->dlc && d->msg != PM_HOST_HEARTBEAT && d->msg != PM_POSE_A && d->msg != PM_POSE_B &&
+           d->msg != PM_POSE_C;
+#else
     return d && cur.f.len == d->dlc && (d->msg == PM_MOVE_COMMIT || d->msg == PM_TRAJ_COMMIT);
+#endif
 }
 
 static void next_ahead(void)
@@ -872,6 +880,15 @@ static void report(void)
                   "double FK\n",
                   TSE_REAL_FLOAT ? "float" : "double", (double)now() * 1e-6, (unsigned long long)R.ticks,
                   R.plant.breaches ? "SOME" : "0", (unsigned long long)R.poses_checked);
+#if SIM_RIG_BOARD_TIME
+    const double us = 1e6 / BT_HZ;
+    print_message("board timing: the thread's longest work %.2f ms; control ticks lost %llu, the latest began %.1f us "
+                  "behind its time; CPU %.1f %% thread, %.1f %% control, %.1f %% step\n",
+                  (double)R.bt.thread_run_max * us * 1e-3, (unsigned long long)R.bt.control_lost,
+                  (double)R.bt.control_late_max * us, 100.0 * (double)R.bt.charged[BT_THREAD] / (double)R.bt.now,
+                  100.0 * (double)R.bt.charged[BT_CONTROL] / (double)R.bt.now,
+                  100.0 * (double)R.bt.charged[BT_STEP] / (double)R.bt.now);
+#endif
     print_message("commands sent: %u (and %u heartbeats); by kind:\n", n.sent, n.heartbeats);
     for (int k = 0; k < K_KINDS; ++k)
         print_message("  %-32s %u\n", kind_names[k], n.by_kind[k]);
