@@ -20,6 +20,11 @@ void bt_stop(void)
     cur = NULL;
 }
 
+void bt_resume(board_time *b)
+{
+    cur = b;
+}
+
 static void clock_follow(board_time *b)
 {
     if (b->h.clock_us)
@@ -36,6 +41,8 @@ static void run_step(board_time *b)
     b->now += BT_STEP_TICK;
     b->charged[BT_STEP] += BT_STEP_TICK;
     b->ctx = was;
+    if (b->h.step_idle && b->next_step < b->next_control && b->h.step_idle(b->h.arg))
+        b->next_step = b->next_control; /* (a control period is a whole number of step periods) */
 }
 
 static void run_control(board_time *b)

@@ -37,6 +37,10 @@ typedef enum { BT_THREAD, BT_CONTROL, BT_STEP } bt_context;
 typedef struct {
     void (*step)(void *arg);    /* one step tick (the rig's fw_step_tick and plant) */
     void (*control)(void *arg); /* one control tick (the rig's fw_control_tick and checks) */
+    /* NULL, or true when the step generator has nothing running or queued: it emits nothing until
+     * the next control tick queues a segment, so the step ticks up to it are skipped (a rig that
+     * must be fast, the fuzzer's). */
+    bool (*step_idle)(void *arg);
     void *arg;
     uint64_t *clock_us;         /* the fake clock the firmware reads, kept at the board's time */
 } bt_hooks;
@@ -65,8 +69,11 @@ typedef struct {
 /* A timeline at cycle 0 with its interrupts at step_hz and control_hz (each dividing BT_HZ),
  * the first of each one period from now; it becomes the one the wrapped solves charge. */
 void bt_init(board_time *b, uint32_t step_hz, uint32_t control_hz, const bt_hooks *hooks);
-/* No timeline: the wrapped solves charge nothing (a test of the same executable without it). */
+/* No timeline: the wrapped solves charge nothing (while a rig boots the controller: fw_init's
+ * solves are before the board's time starts). */
 void bt_stop(void);
+/* b is the timeline the wrapped solves charge again, where it stood. */
+void bt_resume(board_time *b);
 
 /* Charges the current context n cycles and runs what comes due meanwhile and may preempt it. */
 void bt_charge(uint32_t n);

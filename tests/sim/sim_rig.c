@@ -51,7 +51,7 @@ void rig_boot(sim_rig *r, double start_m)
     r->host_alive = true;
     r->seq = 1;
 #if SIM_RIG_BOARD_TIME
-    const bt_hooks hooks = {board_step, board_control, r, &r->bus.now_us};
+    const bt_hooks hooks = {board_step, board_control, NULL, r, &r->bus.now_us};
     bt_init(&r->bt, RIG_STEP_HZ, RIG_CONTROL_HZ, &hooks);
 #endif
 }

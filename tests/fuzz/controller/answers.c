@@ -261,7 +261,7 @@ static void judge_effect(oracle_model *o, rig *r, proto_msg m, bool strict)
     const fw_inspection *c = &in;
     const fw_state was = o->before.in.state, s = c->state;
     if (m == PM_ENABLE)
-        o->last_alive_us = r->f.now_us;
+        o->last_alive_us = o->fed_us;
     if (m == PM_STOP)
         o->traj_stopped = o->traj_running;
     if (!strict)
@@ -302,7 +302,7 @@ static void judge_command(oracle_model *o, rig *r, const oracle_outputs *out, bo
     const fw_state was = o->before.in.state;
     if (m == PM_HOST_HEARTBEAT) {
         FUZZ_CHECK(out->n_ack + out->n_rej + out->n_pv == 0);
-        o->last_alive_us = r->f.now_us;
+        o->last_alive_us = o->fed_us;
         return;
     }
     if (m == PM_POSE_A || m == PM_POSE_B || m == PM_POSE_C) {

@@ -85,7 +85,12 @@ static void check_status(const rig *r, const int64_t *v)
     FUZZ_CHECK(((flags & 16) != 0) == o.passive_read);
     check_queue_fields(v[3], v[4]);
     FUZZ_CHECK(v[3] == c->traj_depth);
-    if (o.any_commit)
+    /* The last commit taken: as the answers said, or the commit being fed, when its answer has
+     * gone out before this STATUS and is not judged yet (board timing: a STATUS falls due while
+     * the commit is validated). */
+    const bool feeding_commit = r->in_feed && o.wf.kind == WIRE_COMMAND &&
+                                (o.wf.msg == PM_MOVE_COMMIT || o.wf.msg == PM_TRAJ_COMMIT) && v[5] == o.wf.seq;
+    if (o.any_commit && !feeding_commit)
         FUZZ_CHECK(v[5] == o.last_commit);
     if (o.status_seen)
         FUZZ_CHECK(v[6] == (uint16_t)(o.status_counter + 1u));
@@ -105,8 +110,12 @@ static void check_slides(const rig *r, int first, const int64_t *v)
             continue;
         const double nm = (double)o.steps_read[first + i] * 1e9 / spm;
         const double nm_handed = (double)o.steps_handed[first + i] * 1e9 / spm;
-        const bool ok = fabs((double)v[i] - nm) <= 1.0 + 1e-6 * fabs(nm) ||
-                        (o.handed && fabs((double)v[i] - nm_handed) <= 1.0 + 1e-6 * fabs(nm_handed));
+        bool ok = fabs((double)v[i] - nm) <= 1.0 + 1e-6 * fabs(nm) ||
+                  (o.handed && fabs((double)v[i] - nm_handed) <= 1.0 + 1e-6 * fabs(nm_handed));
+        for (unsigned j = 0; j < o.n_ticks && j < 8u && !ok; ++j) {
+            const double nm_tick = (double)o.steps_ticks[j][first + i] * 1e9 / spm;
+            ok = fabs((double)v[i] - nm_tick) <= 1.0 + 1e-6 * fabs(nm_tick);
+        }
         if (trace && !ok)
             fprintf(stderr, "slide %d: SLIDES %lld nm, plant %d steps (%.0f nm)\n", first + i,
                     (long long)v[i], (int)o.steps_read[first + i], nm);
@@ -143,7 +152,8 @@ static void read_outputs(rig *r, oracle_outputs *out)
             memcpy(out->pv, v, sizeof v);
             break;
         case PM_STATUS:
-            check_status(r, v);
+            if (!FUZZ_BOARD_TIME) /* (else judged as it was sent: oracle_sent) */
+                check_status(r, v);
             break;
         case PM_SLIDES_A:
         case PM_SLIDES_B:
@@ -165,6 +175,7 @@ static void read_outputs(rig *r, oracle_outputs *out)
     }
     r->f.tx_count = 0;
     fk_check_burst(&o, r);
+    o.n_ticks = 0;
 }
 
 /* What the controller promises whenever it is looked at. */
@@ -190,7 +201,14 @@ static void observe(rig *r, bool ran)
                     (double)r->f.now_us / 1000.0, proto_enum_name(proto_state_names, o.state),
                     proto_enum_name(proto_state_names, s), proto_enum_name(proto_fault_names, c->fault),
                     proto_enum_name(proto_fault_names, c->pending_fault), (unsigned)c->sg_overruns);
-        FUZZ_CHECK(next_states[o.state] & BIT(s));
+        /* On the board's timing a command is taken by the tick that also supervises: a tick
+         * inside a frame's poll may make the command's transition and one of its own. */
+        unsigned allowed = next_states[o.state];
+        if (FUZZ_BOARD_TIME && ran && r->in_feed)
+            for (int x = 0; x < FW_STATE_COUNT; ++x)
+                if (next_states[o.state] & BIT(x))
+                    allowed |= next_states[x];
+        FUZZ_CHECK(allowed & BIT(s));
         summary_state(o.state, s);
         if (s == FW_STATE_FAULT || s == FW_STATE_ESTOP)
             summary_fault(c->fault);
@@ -222,10 +240,13 @@ static void observe(rig *r, bool ran)
     /* At rest no trajectory point waits (a STOP's promise, and a finished or dropped one's). */
     if (s != FW_STATE_MOVING && s != FW_STATE_STOPPING)
         FUZZ_CHECK(c->traj_depth == 0);
-    /* The parameters are what the answers said, and the drivers are programmed with them. */
-    FUZZ_CHECK(memcmp(&c->params, &o.params, sizeof o.params) == 0);
-    FUZZ_CHECK(r->f.pulse_ns == (uint32_t)o.params.v[FP_STEP_PULSE_NS]);
-    FUZZ_CHECK(r->f.dir_setup_ns == (uint32_t)o.params.v[FP_DIR_SETUP_NS]);
+    /* The parameters are what the answers said, and the drivers are programmed with them (not
+     * judged inside a frame's poll, before its answer: a PARAM_SET taken by a tick there). */
+    if (!r->in_feed) {
+        FUZZ_CHECK(memcmp(&c->params, &o.params, sizeof o.params) == 0);
+        FUZZ_CHECK(r->f.pulse_ns == (uint32_t)o.params.v[FP_STEP_PULSE_NS]);
+        FUZZ_CHECK(r->f.dir_setup_ns == (uint32_t)o.params.v[FP_DIR_SETUP_NS]);
+    }
     /* The fake's step interrupt never runs late, so an overrun is the controller asking its step
      * generator for more than the generator can give (stepgen.h: the planner keeps every segment
      * within capacity): with any parameter set the controller accepted, none may happen. */
@@ -287,6 +308,7 @@ void oracle_before_frame(rig *r, const hal_can_frame *f)
     o.storage_fails_before = r->f.storage_fails;
     o.spent_now = false;
     o.cut_pending = o.estop_cut;
+    o.fed_us = r->f.now_us;
 }
 
 /* The commands the thread hands over to the tick (fw/runtime.h), which publishes its view as it
@@ -322,14 +344,14 @@ void oracle_after_frame(rig *r)
     read_outputs(r, &out);
     /* An e-stop interrupt inside the frame's poll, or one the poll completes before it handles
      * the frame: the state the frame was judged in is not the snapshot's. */
-    const bool hooked = r->hook_fired_in_feed || o.cut_pending;
+    const bool hooked = r->hook_fired_in_feed || o.cut_pending || r->ticks_in_feed;
     oracle_judge_answers(&o, r, &out, hooked);
     if (out.n_rej && !hooked) {
         /* Nothing of a refused command is applied (a content refusal spends its number). */
         snapshot after;
         snapshot_take(r, &after);
         const char *what = "";
-        if (!snapshot_same(&o.before, &after, o.spent_now, &what)) {
+        if (!snapshot_same(&o.before, &after, o.spent_now, r->steps_in_feed, &what)) {
             fprintf(stderr, "refused frame 0x%03x changed %s\n", (unsigned)(w->function << 4), what);
             FUZZ_CHECK(!"a refused frame changed the controller");
         }
@@ -370,12 +392,16 @@ void oracle_after_control(rig *r)
     o.estop_read_unsure = o.cut_inside;
     o.passive_read = r->f.can_state.error_passive;
     memcpy(o.steps_read, r->f.steps, sizeof o.steps_read);
+    memcpy(o.steps_ticks[o.n_ticks++ % 8u], r->f.steps, sizeof o.steps_read);
     o.handed = false;
     observe(r, true);
     /* Silence past the watchdog timeout, one control period to notice: the robot is being
      * stopped or the fault latched (docs/protocol.md, HOST_HEARTBEAT). */
     const uint64_t wd_us = (uint64_t)o.params.v[FP_WATCHDOG_MS] * 1000u;
-    if (c->drives_on && wd_us > 0 && r->f.now_us - o.last_alive_us > wd_us + 1000000u / r->cfg.segment_hz)
+    /* (On the board's timing an ENABLE is taken by the tick up to a period after it was fed, and
+     * inside a frame's poll the frame's answer is not judged yet.) */
+    const uint64_t notice = (FUZZ_BOARD_TIME ? 2u : 1u) * 1000000u / r->cfg.segment_hz;
+    if (c->drives_on && wd_us > 0 && !r->in_feed && r->f.now_us - o.last_alive_us > wd_us + notice)
         FUZZ_CHECK(c->pending_fault != FW_FAULT_NONE || c->state == FW_STATE_FAULT);
 }
 
@@ -399,6 +425,13 @@ void oracle_estop_isr(rig *r, bool inside)
     (void)r;
     o.estop_cut = true;
     o.cut_inside = inside;
+}
+
+void oracle_sent(rig *r, const hal_can_frame *f)
+{
+    int64_t v[PROTO_MAX_FIELDS];
+    if (FUZZ_BOARD_TIME && wire_read_sent(f, r->cfg.node, v) == PM_STATUS)
+        check_status(r, v);
 }
 
 void oracle_pulse(rig *r, uint8_t mask)

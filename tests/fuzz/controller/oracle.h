@@ -35,6 +35,9 @@ void oracle_segment(rig *r);
 /* The e-stop interrupt fired: between two calls into the controller, or inside one (from a fake
  * hook point), which then need not complete it. */
 void oracle_estop_isr(rig *r, bool inside);
+/* A frame the controller sends, as it sends it (board timing: a tick may change what it reports
+ * before the outputs are read, so STATUS is judged here then). */
+void oracle_sent(rig *r, const hal_can_frame *f);
 /* The stepper outputs, before the fake takes them. */
 void oracle_pulse(rig *r, uint8_t mask);
 void oracle_dir(rig *r, uint8_t forward_mask);

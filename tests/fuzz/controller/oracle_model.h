@@ -24,6 +24,10 @@ typedef struct oracle_model {
     int32_t steps_read[6];      /* the plant's steps at the last control tick (SLIDES says them) */
     int32_t steps_handed[6];    /* ... or at a command handed over since: its hand-over publishes too */
     bool handed;
+    /* ... or at any control tick since the outputs were last read: on the board's timing several
+     * may run inside one poll, after its telemetry was queued (the newest is steps_read). */
+    int32_t steps_ticks[8][6];
+    unsigned n_ticks;
     /* The telemetry burst being read: SLIDES [m] and FK [m, rad] as sent, bit k of have for
      * slide k, bit 6 + k for pose coordinate k. */
     double tel_q[6], tel_fk[6];
@@ -34,13 +38,15 @@ typedef struct oracle_model {
     bool any_commit;
     uint8_t last_commit;
     bool traj_running, traj_stopped;
-    uint64_t last_alive_us;     /* the host's last heartbeat, or ENABLE */
+    uint64_t last_alive_us;     /* the host's last heartbeat, or ENABLE: when it was fed */
     fw_fault seen_fault, seen_pending;
     bool status_seen;
     uint16_t status_counter;
     unsigned queue_capacity;    /* depth + free, as the first answer said */
     /* The frame being fed. */
     wire_frame wf;
+    uint64_t fed_us;            /* when (the thread handles it at once; on the board's timing the
+                                 * poll may end much later) */
     snapshot before;
     bool estop_open_before, storage_fails_before;
     bool spent_now;             /* it was a commit refused for its content */
@@ -59,7 +65,8 @@ typedef struct {
 
 /* Judges the answers `out` to the frame o->wf, fed with the controller in o->before, and updates
  * the model from them.  hooked: an e-stop interrupt came inside the frame's poll, or was
- * completed by it before the frame: the state the frame met is then not known for sure. */
+ * completed by it before the frame, or (board timing) a control tick ran inside the frame's poll:
+ * the state the frame met is then not known for sure. */
 void oracle_judge_answers(oracle_model *o, rig *r, const oracle_outputs *out, bool hooked);
 
 #endif

@@ -53,6 +53,26 @@ static void w_timing(void *ctx, uint32_t pulse_ns, uint32_t dir_setup_ns)
     r->inner.timing(r->inner.ctx, pulse_ns, dir_setup_ns);
 }
 
+/* The bus: what the controller sends passes the oracle as it is sent. */
+static int w_can_send(void *ctx, const hal_can_frame *f)
+{
+    rig *r = ctx;
+    oracle_sent(r, f);
+    return r->inner_can.send(r->inner_can.ctx, f);
+}
+
+static int w_can_receive(void *ctx, hal_can_frame *f)
+{
+    rig *r = ctx;
+    return r->inner_can.receive(r->inner_can.ctx, f);
+}
+
+static void w_can_state(void *ctx, hal_can_state *st)
+{
+    rig *r = ctx;
+    r->inner_can.state(r->inner_can.ctx, st);
+}
+
 void rig_plant_follow(rig *r, const fw_param_set *params)
 {
     const int64_t was = r->plant_params.v[FP_STEPS_PER_M], spm = params->v[FP_STEPS_PER_M];
@@ -76,6 +96,57 @@ static void fixture_params(rig_fixture fx, fw_param_set *p)
     p->v[FP_SLIDE_AMAX] = 4000000;
 }
 
+#if FUZZ_BOARD_TIME
+/* The step interrupt, as the tick it was due at (the plant's checks count in ticks). */
+static void bt_step(void *arg)
+{
+    rig *r = arg;
+    r->tick = r->bt.next_step / (BT_HZ / r->cfg.step_hz) - 1u;
+    if (r->in_feed)
+        r->steps_in_feed = true;
+    fw_step_tick(r->c);
+}
+
+static bool bt_step_idle(void *arg)
+{
+    rig *r = arg;
+    return stepgen_idle(fw_stepgen_of(r->c));
+}
+
+/* The control interrupt: the segment's checks, the tick, the oracle's look after it. */
+static void bt_control(void *arg)
+{
+    rig *r = arg;
+    if (r->in_feed)
+        r->ticks_in_feed = true;
+    r->tick = r->bt.control_due / (BT_HZ / r->cfg.step_hz);
+    oracle_segment(r);
+    fw_control_tick(r->c);
+    oracle_after_control(r);
+}
+
+static void bt_poll(void *arg)
+{
+    rig *r = arg;
+    fw_poll(r->c);
+}
+
+/* Where the board's time stands, in the rig's step ticks. */
+static void follow_board(rig *r)
+{
+    r->tick = r->bt.now / (BT_HZ / r->cfg.step_hz);
+}
+
+/* The controller (re)started: fw_init's solves are not the board's time. */
+static void boot(rig *r)
+{
+    bt_stop();
+    r->c = fw_init(&r->mem, &r->hal, &r->cfg);
+    FUZZ_CHECK(r->c != NULL);
+    bt_resume(&r->bt);
+}
+#endif
+
 void rig_start(rig *r, rig_fixture fixture)
 {
     /* The fake (most of the rig) is cleared by its own init. */
@@ -83,6 +154,8 @@ void rig_start(rig *r, rig_fixture fixture)
     fake_hal_init(&r->f, &r->hal);
     r->inner = r->hal.stepper;
     r->hal.stepper = (hal_stepper){r, w_set_dir, w_pulse, w_enable, w_timing};
+    r->inner_can = r->hal.can;
+    r->hal.can = (hal_can){r, w_can_send, w_can_receive, w_can_state};
     r->f.hook = hook;
     r->f.hook_arg = r;
     r->hook_point = RIG_HOOK_NONE;
@@ -93,7 +166,11 @@ void rig_start(rig *r, rig_fixture fixture)
     const bool fast = fixture != RIG_HARNESS;
     if (fast)
         r->f.storage_len = (int)fw_params_serialize(&p, r->f.storage, sizeof r->f.storage);
+#if FUZZ_BOARD_TIME
+    r->cfg = (fw_config){fixture == RIG_FAST_BOARD ? 15 : 1, 1000, fast ? 10000 : 100000, bt_await, &r->bt};
+#else
     r->cfg = (fw_config){fixture == RIG_FAST_BOARD ? 15 : 1, 1000, fast ? 10000 : 100000, NULL, NULL};
+#endif
     /* The plant's coordinates are the parameters' from the start (the fake's default switches are
      * the default set's). */
     r->plant_params = p;
@@ -105,8 +182,14 @@ void rig_start(rig *r, rig_fixture fixture)
         r->f.steps[k] = r->f.switch_at[k] + (fixture == RIG_FAST_ON_SWITCH ? -off : off);
     }
 
+#if FUZZ_BOARD_TIME
+    const bt_hooks hooks = {bt_step, bt_control, bt_step_idle, r, &r->f.now_us};
+    bt_init(&r->bt, r->cfg.step_hz, r->cfg.segment_hz, &hooks);
+    boot(r);
+#else
     r->c = fw_init(&r->mem, &r->hal, &r->cfg);
     FUZZ_CHECK(r->c != NULL);
+#endif
     r->ticks_per_segment = r->cfg.step_hz / r->cfg.segment_hz;
     r->us_per_tick = 1000000u / r->cfg.step_hz;
     r->cap_ticks = (uint64_t)(fast ? RIG_CAP_S_FAST : RIG_CAP_S_HARNESS) * r->cfg.step_hz;
@@ -122,17 +205,29 @@ bool rig_over(const rig *r)
     return r->tick >= r->cap_ticks;
 }
 
+/* The thread's poll: in place, or on the board's time. */
+static void thread_poll(rig *r)
+{
+#if FUZZ_BOARD_TIME
+    bt_thread(&r->bt, bt_poll, r);
+    follow_board(r);
+#else
+    fw_poll(r->c);
+#endif
+}
+
 void rig_feed(rig *r, const hal_can_frame *fr)
 {
     /* Flush what is due (STATUS, telemetry) first, so that the frame's poll sends only what the
      * frame causes. */
-    fw_poll(r->c);
+    thread_poll(r);
     oracle_after_poll(r);
     oracle_before_frame(r, fr);
     fake_send(&r->f, fr->id, fr->len, fr->data);
     r->in_feed = true;
     r->hook_fired_in_feed = false;
-    fw_poll(r->c);
+    r->ticks_in_feed = r->steps_in_feed = false;
+    thread_poll(r);
     r->in_feed = false;
     oracle_after_frame(r);
 }
@@ -144,6 +239,7 @@ void rig_feed_msg(rig *r, uint8_t node, proto_msg m, const int32_t *values)
         rig_feed(r, &fr);
 }
 
+#if !FUZZ_BOARD_TIME
 /* The oracle looks after the period's poll and after its control tick (fw/runtime.h: the order). */
 static void after_call(void *arg, fw_ran what)
 {
@@ -165,6 +261,39 @@ static void segment_boundary(rig *r)
     fw_period_start(r->c, after_call, r);
 }
 
+#endif
+
+#if FUZZ_BOARD_TIME
+/* Board time: the interrupts as they come due; after the control tick at each segment boundary
+ * the thread's turn (a heartbeat fed, or a poll), however long it takes. */
+void rig_advance(rig *r, uint64_t n)
+{
+    const uint64_t end = r->tick + n < r->cap_ticks ? r->tick + n : r->cap_ticks;
+    const uint64_t cycles = BT_HZ / r->cfg.step_hz;
+    while (r->tick < end) {
+        /* The control tick at a boundary runs on past it (its own cost): the thread's turn comes
+         * once per segment whose tick has run. */
+        const uint64_t segment = r->bt.next_control / r->bt.control_period - 1u;
+        if (segment > r->thread_segment && !r->bt.control_pending) {
+            r->thread_segment = segment;
+            if (r->host_alive && r->tick >= r->next_heartbeat_tick) {
+                const int32_t v[1] = {(int32_t)(r->tick & 0xFF)};
+                r->next_heartbeat_tick = r->tick + 10u * r->cfg.step_hz / 1000u;
+                rig_feed_msg(r, r->cfg.node, PM_HOST_HEARTBEAT, v);
+            } else {
+                thread_poll(r);
+                oracle_after_poll(r);
+            }
+            continue;
+        }
+        uint64_t until = (r->tick / r->ticks_per_segment + 1u) * r->ticks_per_segment;
+        if (until > end)
+            until = end;
+        bt_idle_until(&r->bt, until * cycles);
+        follow_board(r);
+    }
+}
+#else
 void rig_advance(rig *r, uint64_t n)
 {
     const uint64_t end = r->tick + n < r->cap_ticks ? r->tick + n : r->cap_ticks;
@@ -189,6 +318,7 @@ void rig_advance(rig *r, uint64_t n)
     }
     r->f.now_us = r->tick * r->us_per_tick;
 }
+#endif
 
 void rig_run_ms(rig *r, uint32_t ms)
 {
@@ -225,8 +355,12 @@ void rig_reboot(rig *r)
 {
     r->hook_point = RIG_HOOK_NONE;
     r->f.tx_count = 0;
+#if FUZZ_BOARD_TIME
+    boot(r);
+#else
     r->c = fw_init(&r->mem, &r->hal, &r->cfg);
     FUZZ_CHECK(r->c != NULL);
+#endif
     oracle_reboot(r);
 }
 

@@ -6,7 +6,15 @@
  * control tick, between two boundaries step_hz / segment_hz step ticks.  A frame the fuzzer sends
  * is fed alone and followed at once by one poll, at whatever step tick the rig stands, so that its
  * answers and effects belong to it.  Simulated time per input is capped (RIG_CAP_*), so that one
- * execution stays in the milliseconds. */
+ * execution stays in the milliseconds.
+ *
+ * Built with FUZZ_BOARD_TIME (the float target, as the board runs the controller): on the board's
+ * timing instead (tests/board_time).  Every solve the controller makes is charged its cost at
+ * 168 MHz; the control and step ticks are interrupts that preempt the thread's work where they
+ * come due, a fed frame's poll included; the thread polls once after each control tick (the main
+ * loop) and waits for the tick as the board's does.  The oracle then judges a frame inside whose
+ * handling a control tick ran as it judges one an e-stop interrupt came into: from what the
+ * tick may have changed meanwhile, not from the snapshot before it. */
 #ifndef FUZZ_CONTROLLER_RIG_H
 #define FUZZ_CONTROLLER_RIG_H
 
@@ -17,6 +25,12 @@
 #include "fw/controller.h"
 #include "fw/inspect.h"
 #include "fw/runtime.h"
+#ifndef FUZZ_BOARD_TIME
+#define FUZZ_BOARD_TIME 0
+#endif
+#if FUZZ_BOARD_TIME
+#include "board_time.h"
+#endif
 
 /* The fixtures the first input byte picks (modulo RIG_FIXTURES). */
 typedef enum {
@@ -46,8 +60,9 @@ typedef struct rig {
     fake_hal f;
     fw_controller_mem mem;
     fw_controller *c;      /* in mem */
-    fw_hal hal;            /* what the controller was given: the fake's, with the stepper wrapped */
+    fw_hal hal;            /* what the controller was given: the fake's, with the stepper and the bus wrapped */
     hal_stepper inner;     /* the fake's own stepper */
+    hal_can inner_can;     /* ... and bus */
     fw_config cfg;
     rig_fixture fixture;
     fw_param_set plant_params; /* the set the plant's switches and step size follow */
@@ -64,6 +79,12 @@ typedef struct rig {
     unsigned hook_countdown;
     bool in_feed;          /* a fed frame's poll runs (the hook then fired inside it) */
     bool hook_fired_in_feed;
+    bool ticks_in_feed;    /* a control tick ran inside the fed frame's poll (board timing) */
+    bool steps_in_feed;    /* ... a step tick */
+#if FUZZ_BOARD_TIME
+    board_time bt;
+    uint64_t thread_segment; /* the segment (from 1) of the thread's last turn after its control tick */
+#endif
 } rig;
 
 /* A fresh rig (fake HAL, fixture, controller through fw_init) and a fresh oracle. */

@@ -37,7 +37,9 @@ void snapshot_take(const rig *r, snapshot *s);
 
 /* Whether the two snapshots agree.  spent: the frame was a commit refused for its content, which
  * docs/protocol.md says spends its number: last_seq, any_commit and the staged parts may then
- * differ (the oracle checks them against its own model).  Names the first difference. */
-bool snapshot_same(const snapshot *a, const snapshot *b, bool spent, const char **what);
+ * differ (the oracle checks them against its own model).  stepped: step ticks ran in between (on
+ * the board's timing, inside the frame's poll), which move the step generator's queue and
+ * positions whatever the frame.  Names the first difference. */
+bool snapshot_same(const snapshot *a, const snapshot *b, bool spent, bool stepped, const char **what);
 
 #endif
