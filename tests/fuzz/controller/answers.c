@@ -140,8 +140,12 @@ static void judge_commit(oracle_model *o, const rig *r, const oracle_outputs *ou
             if (first)
                 o->traj_running = true;
         }
+        /* (On the board's timing the tick that took it may also have begun a stop: a fault
+         * raised in the same tick, an e-stop.) */
         if (o->before.in.state == FW_STATE_IDLE)
-            FUZZ_CHECK(c->state == FW_STATE_MOVING);
+            FUZZ_CHECK(c->state == FW_STATE_MOVING ||
+                       (r->ticks_in_feed && (c->state == FW_STATE_STOPPING || c->state == FW_STATE_FAULT ||
+                                             c->state == FW_STATE_ESTOP || c->state == FW_STATE_IDLE)));
     } else {
         switch (out->rej[2]) {
         case FW_REASON_INCOMPLETE:
