@@ -29,13 +29,16 @@ def assert_near(pose, target, pos_tol=10e-6, ang_tol=1e-5):
     assert dp <= pos_tol and da <= ang_tol, f"{pose} is not {target}"
 
 
+# Answer waits: 5 s times how much slower the harness measured the VM to run (1 outside it).
+ANSWER_S = 5.0 * float(os.environ.get("TSE_VM_SLOW", "1"))
+
 # What the session found, to put back what a test changed for itself.
 FOUND = {}
 
 
 @pytest.fixture(scope="module")
 def ctl():
-    with tcan.Controller("vcan0", node=1, timeout=5.0) as c:
+    with tcan.Controller("vcan0", node=1, timeout=ANSWER_S) as c:
         if BOARD:
             # The emulated board runs slower than real time while slides step (docs/emulator.md): a
             # brisker homing speed keeps the suite's several homings to minutes.  The watchdog at 3 s: the
@@ -154,7 +157,7 @@ def test_a_stop_from_elsewhere_ends_the_trajectory(ctl):
     while motions_since(before) == 0 and time.monotonic() < end:
         time.sleep(0.05)
     time.sleep(0.5)
-    with tcan.Controller("vcan0", node=1, timeout=5.0, heartbeat=False) as other:
+    with tcan.Controller("vcan0", node=1, timeout=ANSWER_S, heartbeat=False) as other:
         other.stop()
     t.join(60)
     e = got.get("e")
@@ -312,7 +315,7 @@ def test_watchdog_on_a_killed_heartbeat(ctl):
 
 def test_leaving_the_with_block_stops_the_robot(ctl):
     before = mark()
-    with tcan.Controller("vcan0", node=1, timeout=5.0) as other:
+    with tcan.Controller("vcan0", node=1, timeout=ANSWER_S) as other:
         other.move([0.0, 0.0, 1.3, 0, 0, 0], duration=20.0, wait=False)
         time.sleep(0.5)
         assert other.status().state == "moving"

@@ -3,7 +3,11 @@
 pass=0
 fail=0
 check() { if eval "$2"; then pass=$((pass + 1)); echo "ok: $1"; else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
-T="tsectl --iface vcan0 --node 1 --timeout 5000"
+# Answer waits: 5 s (the controller answers within milliseconds; the VM's one emulated CPU and its
+# step ticks make that seconds at worst on an idle reference machine) times how much slower the VM
+# runs now (TSE_VM_SLOW, measured by the harness; 1 on vcan0 directly).
+answer_ms=$(awk -v s="${TSE_VM_SLOW:-1}" 'BEGIN { printf "%d", 5000 * s }')
+T="tsectl --iface vcan0 --node 1 --timeout $answer_ms"
 
 candump -L vcan0 >dump.log &
 dump=$!
@@ -230,7 +234,7 @@ sleep 0.7
 tse-sim --iface vcan0 --node 5 >twin2.log 2>&1 &
 twin2=$!
 sleep 0.5
-tsectl --iface vcan0 --node 5 --timeout 5000 watch --count 12 >out.txt 2>&1
+tsectl --iface vcan0 --node 5 --timeout "$answer_ms" watch --count 12 >out.txt 2>&1
 check "two controllers on node 5 are detected (a warning naming the node)" \
   "grep -q 'two controllers seem to answer as node 5' out.txt"
 kill -INT $twin1 $twin2

@@ -160,6 +160,10 @@ if [ -n "$board" ]; then
   read -r -a board_args <<<"${HARNESS_BOARD_ARGS:-}"
 fi
 limit=${HARNESS_TIMEOUT:-480}
+# The VM's speed measure (the init script's): iterations of an awk loop, and the seconds they take
+# in the VM on the reference machine (2 cores, nothing else running), measured there.
+speed_work=80000
+speed_ref_s=0.95
 case $limit in
   '' | *[!0-9]*) die "HARNESS_TIMEOUT must be a whole number of seconds, not '$limit'" ;;
 esac
@@ -472,9 +476,20 @@ if [ -n "$board" ]; then
     export TSE_TARGET=board TSE_RIG=$rig_port
   fi
 fi
+# The VM's speed now: a fixed piece of work (speed_work above), timed on the VM's clock (which
+# follows the host's), against what it takes on this project's reference machine unloaded
+# (speed_ref_s).  TSE_VM_SLOW, at least 1, is how many times slower the VM runs; the
+# scenarios multiply their waits for an answer by it (answer_ms in target.sh).
+t0=$(cut -d' ' -f1 /proc/uptime)
+awk 'BEGIN { for (i = 0; i < @SPEED_WORK@; i++) s += i * 0.5; if (s < 0) print s }'
+t1=$(cut -d' ' -f1 /proc/uptime)
+TSE_VM_SLOW=$(awk -v t="$t1" -v t0="$t0" -v ref=@SPEED_REF_S@ 'BEGIN { s = (t - t0) / ref; printf "%.2f", s < 1 ? 1 : s }')
+export TSE_VM_SLOW
 echo "=== scenario begin"
 echo "figure: VM boot, kernel start to scenario: $(cut -d' ' -f1 /proc/uptime) s"
+echo "figure: VM speed: the speed work took $(awk -v t="$t1" -v t0="$t0" 'BEGIN { printf "%.2f", t - t0 }') s (@SPEED_REF_S@ s on the reference machine unloaded): answer waits x $TSE_VM_SLOW"
 INIT
+sed -i "s/@SPEED_WORK@/$speed_work/; s/@SPEED_REF_S@/$speed_ref_s/g" "$root/init"
 if [ ${#pypath[@]} -gt 0 ]; then
   cat >>"$root/init" <<'INIT'
 . /python.conf

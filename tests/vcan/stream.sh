@@ -6,7 +6,7 @@
 pass=0
 fail=0
 check() { if eval "$2"; then pass=$((pass + 1)); echo "ok: $1"; else fail=$((fail + 1)); echo "FAIL: $1"; fi; }
-T="tsectl --iface vcan0 --node 1 --timeout 10000"
+T="tsectl --iface vcan0 --node 1 --timeout $(awk -v s="${TSE_VM_SLOW:-1}" 'BEGIN { printf "%d", 10000 * s }')" # x the VM's slowness (harness)
 export TSE_KIN_LIB=$PWD/libtse_kin.so
 
 # Here the host and the controller share one emulated CPU, which the simulator's 200,000 step ticks a

@@ -7,7 +7,10 @@
 # a loaded machine), so waits for the controller are in the controller's own time where they
 # can be (tsectl's waits follow its STATUS), and in real seconds with generous margins otherwise.
 NODE=${NODE:-1}
-T="tsectl --iface vcan0 --node $NODE --timeout 20000"
+# A wait for an answer: what the controller needs (ms, on the reference machine) times how much
+# slower the VM runs now (TSE_VM_SLOW, the harness's measure; 1 on vcan0 directly).
+answer_ms() { awk -v ms="$1" -v s="${TSE_VM_SLOW:-1}" 'BEGIN { printf "%d", ms * s }'; }
+T="tsectl --iface vcan0 --node $NODE --timeout $(answer_ms 20000)"
 
 # controller_start [tse-sim arguments]: the controller is on the bus and has sent a STATUS.
 # SIM_WRAP (words): a command tse-sim runs under (python_can.sh: at a lower priority).
