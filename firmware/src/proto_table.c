@@ -154,7 +154,7 @@ const proto_def proto_table[PM_COUNT] = {
        FW_DOC("for range, the index of the offending field (0 = its first, counting in byte order); for "
        "param_unknown, param_range and param_set, the parameter id (255 for an id above 255); for "
        "state, the controller's state when it refused (a state value as in STATUS); for timing, the "
-       "slide over its limit, 1..6 for A1, B1, A2, B2, A3, B3, plus 16 times the limit it is against "
+       "slide over its limit, 1..6 for A1, B1, A2, B2, A3, B3, plus " PROTO_STR(PROTO_REJECT_LIMIT_STRIDE) " times the limit it is against "
        "(slide limit codes: 0 slide_vmax, 1 slide_amax, the acceleration, 2 the step generator's speed "
        "limit, when lower than slide_vmax); for too_long, 0 for a move that would last longer than a "
        "move may (its speed too slow, or its duration too long once stretched to the slide limits), 1 "

@@ -167,8 +167,11 @@ int gen_python(FILE *out)
                  "NODE_BITS = %d\nNODE_MASK = 0x%02X\nBROADCAST = %u\n\n"
                  "# TRAJ_COMMIT's flags, and the trajectory rows a host keeps in flight while it streams\n"
                  "# (within the free slots ACK and STATUS report).\n"
-                 "TRAJ_LAST = %u\nTRAJ_FIRST = %u\nTRAJ_WINDOW = %d\n\n",
-            PROTO_NODE_BITS, PROTO_NODE_MASK, PROTO_BROADCAST, PROTO_TRAJ_LAST, PROTO_TRAJ_FIRST, PROTO_TRAJ_WINDOW);
+                 "TRAJ_LAST = %u\nTRAJ_FIRST = %u\nTRAJ_WINDOW = %d\n\n"
+                 "# REJECT's field for a timing refusal: slide + REJECT_LIMIT_STRIDE * the slide limit's code.\n"
+                 "REJECT_LIMIT_STRIDE = %d\n\n",
+            PROTO_NODE_BITS, PROTO_NODE_MASK, PROTO_BROADCAST, PROTO_TRAJ_LAST, PROTO_TRAJ_FIRST, PROTO_TRAJ_WINDOW,
+            PROTO_REJECT_LIMIT_STRIDE);
     fprintf(out, "# STATUS's flags: the bit of each.\nSTATUS_FLAGS = {\n");
     for (const proto_flag *b = proto_status_flags; b->name; ++b)
         fprintf(out, "    \"%s\": 0x%02lX,\n", b->name, (unsigned long)b->mask);

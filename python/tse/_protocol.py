@@ -14,6 +14,9 @@ TRAJ_LAST = 1
 TRAJ_FIRST = 2
 TRAJ_WINDOW = 4
 
+# REJECT's field for a timing refusal: slide + REJECT_LIMIT_STRIDE * the slide limit's code.
+REJECT_LIMIT_STRIDE = 16
+
 # STATUS's flags: the bit of each.
 STATUS_FLAGS = {
     "homed": 0x01,

@@ -221,7 +221,8 @@ class Rejected(TseError):
         self.state = _enum("state", raw["field"]) if self.reason == "state" else None
         self.limit = self.rule = None
         if self.reason == "timing":
-            self.limit = _P.CODES["slide_limit"].get(raw["field"] // 16, (str(raw["field"] // 16),))[0]
+            code = raw["field"] // _P.REJECT_LIMIT_STRIDE
+            self.limit = _P.CODES["slide_limit"].get(code, (str(code),))[0]
         if self.reason == "param_set":
             self.rule = _P.CODES["param_rule"].get(raw["where"], (str(raw["where"]),))[0]
         self.row = row
@@ -308,7 +309,7 @@ def reject_words(raw):
                 "check so long a move within one frame: split it into shorter moves, or keep the path farther "
                 "from that limit")
     if rn == "timing":
-        limit, slide = divmod(field, 16)  # the slide, plus 16 times the limit (CODES["slide_limit"])
+        limit, slide = divmod(field, _P.REJECT_LIMIT_STRIDE)  # the slide, plus the stride times the limit
         slide = _SLIDES[slide - 1] if 1 <= slide <= 6 else "?"
         ratio = f"{where / 1000.0:.2f}"
         name, words = _P.CODES["slide_limit"].get(limit, (None, None))

@@ -34,6 +34,14 @@
  * that the bus's and the host's round trip no longer sets the pace (docs/protocol.md). */
 #define PROTO_TRAJ_WINDOW 4
 
+/* REJECT's field for a timing refusal: the slide (1..6) plus this times the slide limit's code
+ * (proto_slide_limit_names). */
+#define PROTO_REJECT_LIMIT_STRIDE 16
+
+/* A number of the table as text, for its documentation strings. */
+#define PROTO_STR_(x) #x
+#define PROTO_STR(x) PROTO_STR_(x)
+
 typedef enum { PROTO_TO_CONTROLLER, PROTO_TO_HOST } proto_direction;
 
 typedef enum { PF_U8, PF_I8, PF_U16, PF_I16, PF_U24, PF_I24, PF_U32, PF_I32 } proto_field_type;

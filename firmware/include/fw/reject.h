@@ -26,8 +26,8 @@
 #include "fw/proto_table.h"
 #include "fw/types.h"
 
-/* A timing refusal's field: slide + FW_REJECT_LIMIT * limit. */
-#define FW_REJECT_LIMIT 16
+/* A timing refusal's field: slide + FW_REJECT_LIMIT * limit (the message table's stride). */
+#define FW_REJECT_LIMIT PROTO_REJECT_LIMIT_STRIDE
 #define FW_REJECT_ACCEL (FW_REJECT_LIMIT * FW_LIMIT_SLIDE_AMAX)
 
 /* v[] in REJECT's field order (function, seq, reason, scissor, kin_status, field, where), every
