@@ -1,4 +1,5 @@
 /* status [--json]: one STATUS with the pose and slides; watch [--count N]: live telemetry. */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -65,6 +66,8 @@ int run_status(tlink *l, int argc, char **argv)
     const int homed = (st.v[2] & PROTO_STATUS_HOMED) != 0;
     const uint64_t end = link_now_us() + 500000u;
     proto_message m;
+    if (link_telemetry(l, true) < 0)
+        return ctl_error("cannot set the CAN socket's filter: %s", strerror(errno)), EXIT_BUS;
     while (link_now_us() < end && !tsectl_interrupted) {
         if (link_recv(l, &m, 50) == 1)
             telemetry_take(&t, &m);
@@ -91,6 +94,8 @@ int run_watch(tlink *l, int argc, char **argv)
     long count = argc == 2 ? strtol(argv[1], NULL, 10) : -1;
     telemetry t;
     memset(&t, 0, sizeof t);
+    if (link_telemetry(l, true) < 0)
+        return ctl_error("cannot set the CAN socket's filter: %s", strerror(errno)), EXIT_BUS;
     while (!tsectl_interrupted && count != 0) {
         proto_message m;
         if (link_recv(l, &m, 500) != 1)

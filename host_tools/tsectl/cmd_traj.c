@@ -43,15 +43,18 @@ int check_trajectory(int argc, char **argv, int *done)
 static int start_point(tlink *l, telemetry *t)
 {
     memset(t, 0, sizeof *t);
+    if (link_telemetry(l, true) < 0)
+        return -1;
     const uint64_t end = link_now_us() + 1000000u;
     proto_message m;
-    while (link_now_us() < end && !tsectl_interrupted) {
+    int rc = -1;
+    while (rc < 0 && link_now_us() < end && !tsectl_interrupted) {
         if (link_recv(l, &m, 50) == 1)
             telemetry_take(t, &m);
         if (telemetry_has_slides(t) && telemetry_has_pose(t))
-            return 0;
+            rc = 0;
     }
-    return -1;
+    return link_telemetry(l, false) < 0 ? -1 : rc;
 }
 
 /* STOP, then wait until at rest; an interrupt meanwhile sends ESTOP (ctl_halt). */

@@ -36,10 +36,7 @@ int link_open(tlink *l, const char *iface, uint8_t node)
     if (ioctl(l->fd, SIOCGIFINDEX, &ifr) < 0)
         goto fail;
     addr.can_ifindex = ifr.ifr_ifindex;
-    /* Only the node's frames (any function, low four bits = node). */
-    struct can_filter f = {node, CAN_EFF_FLAG | CAN_RTR_FLAG | 0x00F};
-    if (setsockopt(l->fd, SOL_CAN_RAW, CAN_RAW_FILTER, &f, sizeof f) < 0 ||
-        bind(l->fd, (struct sockaddr *)&addr, sizeof addr) < 0)
+    if (link_telemetry(l, false) < 0 || bind(l->fd, (struct sockaddr *)&addr, sizeof addr) < 0)
         goto fail;
     return 0;
 fail:;
@@ -48,6 +45,28 @@ fail:;
     l->fd = -1;
     errno = e;
     return -1;
+}
+
+static bool is_telemetry(proto_msg m)
+{
+    return (m >= PM_SLIDES_A && m <= PM_SLIDES_C) || (m >= PM_FK_A && m <= PM_FK_C);
+}
+
+int link_telemetry(tlink *l, bool on)
+{
+    /* The node's frames, either way (low four bits = node): every function, or every function
+     * but the telemetry's. */
+    struct can_filter f[PM_COUNT];
+    int n = 0;
+    if (on) {
+        f[n++] = (struct can_filter){l->node, CAN_EFF_FLAG | CAN_RTR_FLAG | 0x00F};
+    } else {
+        for (int m = 0; m < PM_COUNT; ++m)
+            if (!is_telemetry((proto_msg)m))
+                f[n++] = (struct can_filter){(canid_t)(proto_table[m].function << PROTO_NODE_BITS | l->node),
+                                             CAN_EFF_FLAG | CAN_RTR_FLAG | CAN_SFF_MASK};
+    }
+    return setsockopt(l->fd, SOL_CAN_RAW, CAN_RAW_FILTER, f, (socklen_t)(n * (int)sizeof f[0]));
 }
 
 void link_close(tlink *l)

@@ -24,7 +24,12 @@ typedef struct {
     bool traj_end_seen;
 } tlink;
 
+/* Opens the socket on the node's frames, telemetry (SLIDES, FK) excepted. */
 int link_open(tlink *l, const char *iface, uint8_t node);
+/* Telemetry through the socket's filter, or not.  Only while a command reads it: 120 frames a
+ * second that nobody reads fill the socket's queue while tsectl computes (checking a path, on a
+ * slow machine for seconds), and the answers that come next are then lost.  Returns 0 or -1. */
+int link_telemetry(tlink *l, bool on);
 void link_close(tlink *l);
 uint64_t link_now_us(void);
 
