@@ -100,8 +100,15 @@ const proto_flag proto_status_flags[] = {
     {0, 0, 0},
 };
 
+const proto_flag proto_traj_flags[] = {
+    {PROTO_TRAJ_LAST, "last", FW_DOC("the trajectory's last row")},
+    {PROTO_TRAJ_FIRST, "first", FW_DOC("its first row, which starts it")},
+    {0, 0, 0},
+};
+
 const proto_flag_field proto_flag_fields[] = {
     {PM_STATUS, 2, proto_status_flags},
+    {PM_TRAJ_COMMIT, 2, proto_traj_flags},
     {PM_COUNT, 0, 0},
 };
 
@@ -218,8 +225,7 @@ const proto_def proto_table[PM_COUNT] = {
      {SEQ(0),
       {"dt", PF_U32, 1, 1000, 60000000, "s", 1e-6, 0,
        FW_DOC("time from the previous row (the first row: from the trajectory's start)")},
-      {"flags", PF_U8, 5, 0, 3, "", 1.0, 0,
-       FW_DOC("bit 0: the trajectory's last row; bit 1: its first row, which starts it")},
+      {"flags", PF_U8, 5, 0, 3, "", 1.0, 0, FW_DOC("the row's place in its trajectory")},
       {"traj", PF_U8, 6, 0, 255, "", 1.0, 0,
        FW_DOC("the trajectory's identity: its first row's sequence number (the first row carries its own)")}},
      FW_DOC("Queue the staged pose of this sequence number as a row of a timed trajectory. A trajectory starts "

@@ -1,6 +1,7 @@
 /* python/tse/_protocol.py: the message table and the parameter table as Python data, for the
  * client tse.can, which packs and reads frames from it as the firmware's codec does.  See
  * outputs.h. */
+#include <ctype.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -166,12 +167,19 @@ int gen_python(FILE *out)
                  "# every controller (only ESTOP and STOP honour it).\n\n"
                  "NODE_BITS = %d\nNODE_MASK = 0x%02X\nBROADCAST = %u\n\n"
                  "# TRAJ_COMMIT's flags, and the trajectory rows a host keeps in flight while it streams\n"
-                 "# (within the free slots ACK and STATUS report).\n"
-                 "TRAJ_LAST = %u\nTRAJ_FIRST = %u\nTRAJ_WINDOW = %d\n\n"
-                 "# REJECT's field for a timing refusal: slide + REJECT_LIMIT_STRIDE * the slide limit's code.\n"
-                 "REJECT_LIMIT_STRIDE = %d\n\n",
-            PROTO_NODE_BITS, PROTO_NODE_MASK, PROTO_BROADCAST, PROTO_TRAJ_LAST, PROTO_TRAJ_FIRST, PROTO_TRAJ_WINDOW,
-            PROTO_REJECT_LIMIT_STRIDE);
+                 "# (within the free slots ACK and STATUS report).\n",
+            PROTO_NODE_BITS, PROTO_NODE_MASK, PROTO_BROADCAST);
+    for (const proto_flag *b = proto_traj_flags; b->name; ++b) {
+        fprintf(out, "TRAJ_");
+        for (const char *c = b->name; *c; ++c)
+            fputc(toupper((unsigned char)*c), out);
+        fprintf(out, " = %lu\n", (unsigned long)b->mask);
+    }
+    fprintf(out,
+            "TRAJ_WINDOW = %d\n\n"
+            "# REJECT's field for a timing refusal: slide + REJECT_LIMIT_STRIDE * the slide limit's code.\n"
+            "REJECT_LIMIT_STRIDE = %d\n\n",
+            PROTO_TRAJ_WINDOW, PROTO_REJECT_LIMIT_STRIDE);
     fprintf(out, "# STATUS's flags: the bit of each.\nSTATUS_FLAGS = {\n");
     for (const proto_flag *b = proto_status_flags; b->name; ++b)
         fprintf(out, "    \"%s\": 0x%02lX,\n", b->name, (unsigned long)b->mask);

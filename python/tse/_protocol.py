@@ -161,7 +161,7 @@ MESSAGES = {
         ("dt", "u32", 1, 1000, 60000000, "s", 1e-06, None,
          "time from the previous row (the first row: from the trajectory's start)"),
         ("flags", "u8", 5, 0, 3, "", 1.0, None,
-         "bit 0: the trajectory's last row; bit 1: its first row, which starts it"),
+         "the row's place in its trajectory: bit 0 last (the trajectory's last row); bit 1 first (its first row, which starts it)"),
         ("traj", "u8", 6, 0, 255, "", 1.0, None,
          "the trajectory's identity: its first row's sequence number (the first row carries its own)"),
     ), "Queue the staged pose of this sequence number as a row of a timed trajectory. A trajectory starts with a row flagged first, taken only while idle; every later row carries its identity and the sequence number after its previous row's (else order, nothing taken: a host with several rows in flight sends again from the first refused one). Its clock starts, with the plate at rest until then, once the controller holds traj_lead of it, its last row, or a full queue; a row of a trajectory that has ended is refused ended, whatever the state, and never starts another. See Streaming a trajectory, above."),

@@ -24,7 +24,8 @@
 #define PROTO_STATUS_SWITCHES_OFF 0x08u
 #define PROTO_STATUS_ERROR_PASSIVE 0x10u
 
-/* TRAJ_COMMIT's flags. */
+/* TRAJ_COMMIT's flags; proto_traj_flags names and documents them, as proto_status_flags does
+ * STATUS's. */
 #define PROTO_TRAJ_LAST 1u  /* the trajectory's last row */
 #define PROTO_TRAJ_FIRST 2u /* its first row: starts it */
 
@@ -151,6 +152,7 @@ typedef struct {
     const proto_flag *flags;
 } proto_flag_field;
 extern const proto_flag proto_status_flags[];
+extern const proto_flag proto_traj_flags[];
 extern const proto_flag_field proto_flag_fields[];
 
 /* The bits of message m's field k, or NULL when it is not a field of bits. */
