@@ -116,9 +116,15 @@ void bt_thread(board_time *b, void (*fn)(void *), void *arg)
     thread_ran(b);
 }
 
+/* When the next step or control interrupt comes due. */
+static uint64_t next_due(const board_time *b)
+{
+    return b->next_step < b->next_control ? b->next_step : b->next_control;
+}
+
 static void to_next_interrupt(board_time *b)
 {
-    const uint64_t t = b->control_pending ? b->now : b->next_step < b->next_control ? b->next_step : b->next_control;
+    const uint64_t t = b->control_pending ? b->now : next_due(b);
     if (t > b->now)
         b->now = t;
     dispatch(b);
@@ -139,7 +145,7 @@ void bt_idle_until(board_time *b, uint64_t t)
     b->idle = true;
     dispatch(b);
     while (b->now < t) {
-        const uint64_t next = b->next_step < b->next_control ? b->next_step : b->next_control;
+        const uint64_t next = next_due(b);
         b->now = next < t ? next : t;
         dispatch(b);
     }
