@@ -58,6 +58,39 @@ static int can_send(void *c, const hal_can_frame *f)
     }
     return 0;
 }
+/* The thread's longest stretch between two reads of the bus while a hold is measured, and the
+ * clock then running with the instructions (168 per microsecond, the board's core clock), so that
+ * what falls due during a long validation (STATUS, telemetry) is sent, and counted, as on the
+ * board. */
+#define BENCH_CORE_MHZ 168u
+static bool holding;
+static uint32_t hold_t0, hold_last, hold_worst;
+
+static void hold_mark(void)
+{
+    if (!holding)
+        return;
+    const uint32_t t = bench_count();
+    if (t - hold_last > hold_worst)
+        hold_worst = t - hold_last;
+    hold_last = t;
+}
+
+void bench_hold_begin(void)
+{
+    hold_worst = 0;
+    hold_t0 = hold_last = bench_count();
+    holding = true;
+}
+
+uint32_t bench_hold_end(void)
+{
+    hold_mark();
+    holding = false;
+    bench_now_us += (hold_last - hold_t0) / BENCH_CORE_MHZ;
+    return hold_worst;
+}
+
 /* Frames for the next poll: a small ring the rig fills and the controller's poll empties. */
 #define RX_RING 8u
 static hal_can_frame rx[RX_RING];
@@ -65,6 +98,7 @@ static unsigned rx_head, rx_count;
 static int can_receive(void *c, hal_can_frame *f)
 {
     (void)c;
+    hold_mark();
     if (rx_count == 0)
         return 0;
     *f = rx[rx_head];
@@ -78,7 +112,11 @@ static void st_pulse(void *c, uint8_t m) { (void)c; (void)m; }
 static void st_enable(void *c, bool on) { (void)c; (void)on; }
 static uint16_t in_limits(void *c) { (void)c; return 0; }
 static bool in_estop(void *c) { (void)c; return false; }
-static uint64_t clk_now(void *c) { (void)c; return bench_now_us; }
+static uint64_t clk_now(void *c)
+{
+    (void)c;
+    return holding ? bench_now_us + (bench_count() - hold_t0) / BENCH_CORE_MHZ : bench_now_us;
+}
 static int st_load(void *c, void *b, size_t n) { (void)c; (void)b; (void)n; return 0; }
 static int st_save(void *c, const void *b, size_t n) { (void)c; (void)b; (void)n; return -1; }
 
@@ -153,7 +191,7 @@ int bench_rig_start(void)
     return fw_state_of(bench_ctl) == FW_STATE_IDLE ? 0 : -1;
 }
 
-uint32_t bench_commit_cost(const bench_commit *bc, char *answer, int *reason)
+uint32_t bench_commit_cost(const bench_commit *bc, char *answer, int *reason, uint32_t *hold)
 {
     /* A copy to come back to, restored where it was taken: the controller's pointers (to the HAL's
      * functions, and into its own memory) stay valid. */
@@ -173,8 +211,12 @@ uint32_t bench_commit_cost(const bench_commit *bc, char *answer, int *reason)
     bench_queue(PM_MOVE_COMMIT, ((const int32_t[]){seq, bc->kind, bc->value}));
     bench_wrap_clear();
     const uint32_t t0 = bench_count();
+    bench_hold_begin();
     fw_poll(bench_ctl);
+    const uint32_t longest = bench_hold_end();
     const uint32_t t1 = bench_count();
+    if (hold)
+        *hold = longest;
     const bool wrapped = bench_wrapped();
     if (answered) {
         const uint8_t fn = (uint8_t)(answer_frame.id >> PROTO_NODE_BITS);

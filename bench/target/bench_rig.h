@@ -49,7 +49,15 @@ typedef struct {
 
 /* Instructions the poll that takes the commit's MOVE_COMMIT costs (fw_poll, the frame waiting), with its answer ('a' ACK, 'r'
  * REJECT) and, for a REJECT, its reason; the controller is put back at rest afterwards.  UINT32_MAX
- * for a frame that wrapped the counter, 0 when `from` is not reachable. */
-uint32_t bench_commit_cost(const bench_commit *bc, char *answer, int *reason);
+ * for a frame that wrapped the counter, 0 when `from` is not reachable.  *hold (when not NULL):
+ * the poll's longest stretch between two reads of the bus (bench_hold_end). */
+uint32_t bench_commit_cost(const bench_commit *bc, char *answer, int *reason, uint32_t *hold);
+
+/* Around a call of the thread's: the longest it went without reading the bus (from the begin to
+ * its first read, between two reads, from its last read to the end), in instructions: how long
+ * the board is held from the bus, deaf to a STOP and silent (docs/validation.md).  Meanwhile the
+ * controller's clock runs with the instructions at 168 MHz, as on the board. */
+void bench_hold_begin(void);
+uint32_t bench_hold_end(void);
 
 #endif

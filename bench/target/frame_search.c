@@ -10,7 +10,8 @@
  *           it (the tangent paths that make pieces small for long);
  *   turn    rotations only, to an orientation near the boundary;
  * then the costliest are mutated (target moved by up to 1 % of its ray, the value scaled) and kept
- * when they cost more.  Prints the costliest as bench_commit initializers for frame_cases.c. */
+ * when they cost more.  Prints the costliest as bench_commit initializers for frame_cases.c, and the
+ * commit, of all tried, that held the board longest from the bus (bench_hold_end: frame_worst). */
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -154,13 +155,21 @@ static void mutate(const bench_commit *a, bench_commit *bc)
     bc->value = scaled < TSE_R(1.0) ? 1 : scaled > (tse_real)most ? most : (int32_t)scaled;
 }
 
+static bench_commit held;
+static uint32_t held_for;
+
 static void keep(const bench_commit *bc, int family, bool mutant)
 {
     char answer;
     int reason;
-    const uint32_t cost = bench_commit_cost(bc, &answer, &reason);
+    uint32_t hold;
+    const uint32_t cost = bench_commit_cost(bc, &answer, &reason, &hold);
     if (cost == 0)
         return; /* its start is not reachable */
+    if (hold > held_for) {
+        held_for = hold;
+        held = *bc;
+    }
     found *b = best[family];
     unsigned i = nbest[family] < KEEP ? nbest[family]++ : KEEP - 1;
     if (i == KEEP - 1 && nbest[family] == KEEP && b[i].cost >= cost)
@@ -226,5 +235,10 @@ int main(void)
                       : f->answer == 'r' ? proto_enum_name(proto_reason_names, f->reason)
                                          : "no answer");
         }
+    sh_puts("# held the board longest from the bus:\n    {");
+    print_pose(held.from);
+    sh_puts(", ");
+    print_pose(held.to);
+    sh_printf(", %ld, %ld}, /* held %lu instructions */\n", (long)held.kind, (long)held.value, (unsigned long)held_for);
     sh_exit(0);
 }

@@ -23,6 +23,7 @@
 
 static uint32_t samples[MAX_SAMPLES];
 static uint32_t overhead;
+static uint32_t blend_hold; /* the blend's longest stretch away from the bus (bench_frames) */
 
 static inline uint32_t count(void)
 {
@@ -191,7 +192,11 @@ static void bench_controller(void)
         bench_stage(seq, moves[m].to);
         uint32_t n;
         bench_queue(PM_MOVE_COMMIT, ((const int32_t[]){seq, 0, moves[m].ms}));
+        bench_hold_begin();
         MEASURE(n, fw_poll(ctl));
+        const uint32_t hold = bench_hold_end();
+        if (m == 2)
+            blend_hold = hold;
         ++seq;
         const uint32_t segs = segments_of_running();
         sh_printf("%s,%lu\n", moves[m].name, (unsigned long)n);
@@ -212,34 +217,47 @@ static void bench_controller(void)
     }
 }
 
-/* The costliest frame over the adversarial commits of frame_cases.c (docs/validation.md, "What one
- * frame costs"), each from rest, its MOVE_COMMIT's handling measured whole. */
+/* Over the adversarial commits of frame_cases.c (docs/validation.md, "What one frame costs"), each
+ * from rest, and the blend above: the longest the thread went without reading the bus while it
+ * handled one frame (frame_worst: how long one frame holds the board), and the costliest commit's
+ * handling whole, to its answer (commit_worst). */
 static void bench_frames(void)
 {
     if (bench_rig_start() != 0) {
         sh_puts("bench: controller did not start\n");
         return;
     }
-    uint32_t worst = 0;
-    unsigned at = 0;
+    uint32_t worst = 0, hold_worst = blend_hold;
+    unsigned at = 0, hold_at = 0; /* case + 1; 0: the blend */
     char answer = 0;
     int reason = 0;
     for (unsigned i = 0; i < bench_frame_case_count; ++i) {
         char a;
         int r;
-        const uint32_t n = bench_commit_cost(&bench_frame_cases[i], &a, &r);
+        uint32_t hold;
+        const uint32_t n = bench_commit_cost(&bench_frame_cases[i], &a, &r, &hold);
         if (n >= worst) {
             worst = n;
             at = i;
             answer = a;
             reason = r;
         }
+        if (hold > hold_worst) {
+            hold_worst = hold;
+            hold_at = i + 1u;
+        }
     }
+    if (hold_at == 0)
+        sh_printf("frame_worst,%lu\n# frame_worst: the blend (validate_blend), over it and %u adversarial commits\n",
+                  (unsigned long)hold_worst, bench_frame_case_count);
+    else
+        sh_printf("frame_worst,%lu\n# frame_worst: case %u of %u\n", (unsigned long)hold_worst, hold_at,
+                  bench_frame_case_count);
     if (worst == UINT32_MAX)
-        sh_printf("frame_worst,4294967296\n# frame_worst: at least that (case %u of %u wrapped the counter)\n",
+        sh_printf("commit_worst,4294967296\n# commit_worst: at least that (case %u of %u wrapped the counter)\n",
                   at + 1, bench_frame_case_count);
     else
-        sh_printf("frame_worst,%lu\n# frame_worst: case %u of %u (%s)\n", (unsigned long)worst, at + 1,
+        sh_printf("commit_worst,%lu\n# commit_worst: case %u of %u (%s)\n", (unsigned long)worst, at + 1,
                   bench_frame_case_count, answer == 'a' ? "accepted" : answer == 'r' ? proto_enum_name(proto_reason_names, reason) : "no answer");
 }
 

@@ -2,6 +2,7 @@
 
 #include "fw/work.h"
 #include "state.h"
+#include "telemetry.h"
 
 bool fw_inbox_next(fw_controller *c, hal_can_frame *f)
 {
@@ -60,6 +61,7 @@ static bool watch(void *ctx)
             th->abandon = true;
         }
     }
+    fw_telemetry_look(c);
     return th->abandon;
 }
 

@@ -4,8 +4,9 @@
  * moves the frames waiting into the inbox (up to FW_INBOX; the rest wait on the bus), takes a
  * heartbeat to this controller at once (it needs no answer), halts stepping at once on an ESTOP
  * (fw_estop_halt: the tick completes it), and ends the validation on an ESTOP, or on a STOP while
- * the robot moves (the commit is then refused `state`, and the stop answered right after).  Every
- * other frame waits in the inbox, in order, for the validation's answer. */
+ * the robot moves (the commit is then refused `state`, and the stop answered right after), and
+ * sends STATUS and telemetry when they are due (fw_telemetry_look).  Every other frame waits in
+ * the inbox, in order, for the validation's answer. */
 #ifndef FW_INBOX_H
 #define FW_INBOX_H
 

@@ -36,6 +36,11 @@ void fw_publish(fw_controller *c)
 
 void fw_view_read(fw_controller *c)
 {
+    fw_view_read_into(c, &c->th.view);
+}
+
+void fw_view_read_into(fw_controller *c, fw_view *out)
+{
     fw_shared *s = &c->sh;
     uint32_t w[FW_VIEW_WORDS];
     for (;;) {
@@ -48,7 +53,7 @@ void fw_view_read(fw_controller *c)
         if (atomic_load_explicit(&s->view_seq, memory_order_relaxed) == a)
             break;
     }
-    memcpy(&c->th.view, w, sizeof c->th.view);
+    memcpy(out, w, sizeof *out);
 }
 
 bool fw_ended_post(fw_controller *c, const fw_traj_ended *e)

@@ -19,6 +19,9 @@ void fw_publish(fw_controller *c);
 /* The view as the tick last published it, into c->th.view.  From the thread. */
 void fw_view_read(fw_controller *c);
 
+/* The same into a copy of the caller's. */
+void fw_view_read_into(fw_controller *c, fw_view *out);
+
 /* A trajectory ended: for the thread's TRAJ_END.  From the tick.  Returns false, dropping it, if
  * the thread has not taken the ends before it (a ring of FW_ENDED_RING: a trajectory starts only
  * through the thread, which takes the ends first, so this does not happen). */

@@ -1,11 +1,11 @@
 #include "telemetry.h"
 
+#include "publish.h"
 #include "send.h"
 #include "tse/fk.h"
 
-static void send_status(fw_controller *c)
+static void send_status(fw_controller *c, const fw_view *v)
 {
-    const fw_view *v = &c->th.view;
     uint8_t flags = 0;
     if (v->flags & FW_VIEW_HOMED)
         flags |= PROTO_STATUS_HOMED;
@@ -34,9 +34,8 @@ static int32_t wire_nm(tse_real s)
     return (int32_t)nm;
 }
 
-static void send_telemetry(fw_controller *c)
+static void send_telemetry(fw_controller *c, const fw_view *v)
 {
-    const fw_view *v = &c->th.view;
     tse_real q[6];
     const tse_real spm = (tse_real)c->th.params.v[FP_STEPS_PER_M];
     for (int k = 0; k < 6; ++k)
@@ -57,17 +56,40 @@ static void send_telemetry(fw_controller *c)
     }
 }
 
-void fw_telemetry_poll(fw_controller *c)
+static bool status_due(const fw_thread *th, uint64_t t)
+{
+    return t >= th->next_status_us;
+}
+
+static bool telemetry_due(const fw_thread *th, uint64_t t)
+{
+    return th->params.v[FP_TELEMETRY_MS] > 0 && t >= th->next_telemetry_us;
+}
+
+static void send_due(fw_controller *c, const fw_view *v, uint64_t t)
 {
     fw_thread *th = &c->th;
-    const uint64_t t = fw_now(c);
-    if (t >= th->next_status_us) {
-        send_status(c);
+    if (status_due(th, t)) {
+        send_status(c, v);
         th->next_status_us = t + (uint64_t)th->params.v[FP_STATUS_MS] * 1000u;
     }
-    const uint32_t tel = (uint32_t)th->params.v[FP_TELEMETRY_MS];
-    if (tel > 0 && t >= th->next_telemetry_us) {
-        send_telemetry(c);
-        th->next_telemetry_us = t + (uint64_t)tel * 1000u;
+    if (telemetry_due(th, t)) {
+        send_telemetry(c, v);
+        th->next_telemetry_us = t + (uint64_t)th->params.v[FP_TELEMETRY_MS] * 1000u;
     }
+}
+
+void fw_telemetry_poll(fw_controller *c)
+{
+    send_due(c, &c->th.view, fw_now(c));
+}
+
+void fw_telemetry_look(fw_controller *c)
+{
+    const uint64_t t = fw_now(c);
+    if (!status_due(&c->th, t) && !telemetry_due(&c->th, t))
+        return; /* the common case: a look costs no view */
+    fw_view v;
+    fw_view_read_into(c, &v);
+    send_due(c, &v, t);
 }

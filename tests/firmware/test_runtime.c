@@ -64,6 +64,18 @@ static unsigned index_of(unsigned from, uint8_t kind, proto_msg m)
     return 0;
 }
 
+/* Half a second into a 3 s move to blend_first from idle: where a commit to blend_second is
+ * a blend, validated over the whole of both moves, thousands of segments. */
+static const double blend_first[6] = {0.06, 0.0, 1.05, 0, 0, 0}, blend_second[6] = {-0.06, 0.06, 1.15, 0, 0, 0.1};
+
+static void moving_to_first(void)
+{
+    reach(FW_STATE_IDLE);
+    move_to(blend_first, 3000);
+    run(500);
+    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
+}
+
 /* A blend is validated over the whole of both moves, thousands of segments; a STOP that arrives
  * behind its commit is seen during the validation: answered first, the robot brought to rest,
  * and the commit it cut short refused as out of state (it met a stopping robot).  Nothing of it
@@ -71,13 +83,9 @@ static unsigned index_of(unsigned from, uint8_t kind, proto_msg m)
 static void test_stop_ends_a_validation(void **state)
 {
     (void)state;
-    reach(FW_STATE_IDLE);
-    const double first[6] = {0.06, 0.0, 1.05, 0, 0, 0}, second[6] = {-0.06, 0.06, 1.15, 0, 0, 0.1};
-    move_to(first, 3000);
-    run(500);
-    assert_int_equal(fw_state_of(C), FW_STATE_MOVING);
+    moving_to_first();
     const unsigned from = F.tx_count;
-    move_to(second, 3000);
+    move_to(blend_second, 3000);
     cmd(PM_STOP);
     fw_poll(C);
     const unsigned stop_ack = index_of(from, proto_table[PM_ACK].function, PM_STOP);
@@ -91,8 +99,8 @@ static void test_stop_ends_a_validation(void **state)
         run(10);
     assert_int_equal(fw_state_of(C), FW_STATE_IDLE);
     tse_ik_result r1, r2;
-    assert_int_equal(tse_ik(fw_geometry_of(C), first, NULL, &r1), TSE_OK);
-    assert_int_equal(tse_ik(fw_geometry_of(C), second, NULL, &r2), TSE_OK);
+    assert_int_equal(tse_ik(fw_geometry_of(C), blend_first, NULL, &r1), TSE_OK);
+    assert_int_equal(tse_ik(fw_geometry_of(C), blend_second, NULL, &r2), TSE_OK);
     bool short_of_first = false;
     for (int k = 0; k < 6; ++k) {
         short_of_first |= labs(F.steps[k] - lround(r1.q[k] * 1280000.0)) > 100;
@@ -100,6 +108,71 @@ static void test_stop_ends_a_validation(void **state)
                     fabs(r1.q[k] - r2.q[k]) < 1e-4);
     }
     assert_true(short_of_first);
+}
+
+/* ---- the host goes on hearing the controller during a validation ---- */
+
+static unsigned bus_reads;
+
+/* Time passes as the thread works: 0.5 ms at every read of the bus (a look comes every few
+ * pieces, fw/work.h), so the blend's validation below lasts hundreds of milliseconds. */
+static void time_passes_at_reads(void *arg, fake_hook_point at)
+{
+    if (at == FAKE_AT_RECEIVE) {
+        ((fake_hal *)arg)->now_us += 500u;
+        ++bus_reads;
+    }
+}
+
+static unsigned count_of(unsigned from, unsigned to, proto_msg m)
+{
+    unsigned n = 0;
+    for (unsigned i = from; i < to; ++i)
+        n += (F.tx[i].id >> PROTO_NODE_BITS) == proto_table[m].function;
+    return n;
+}
+
+/* A validation that takes long (a blend, over both moves segment by segment) does not silence
+ * the controller: STATUS and telemetry go out at their periods while it runs, each STATUS with
+ * the state the tick is in (moving) and the last commit answered (the one running), each
+ * telemetry period whole (SLIDES A to C, then FK A to C).  Before, nothing went out until the
+ * answer: on the board, 130 ms for such a blend and 110 ms for the costliest commit found. */
+static void test_status_and_telemetry_during_a_validation(void **state)
+{
+    (void)state;
+    moving_to_first();
+    const uint8_t running = (uint8_t)(seq - 1u);
+    move_to(blend_second, 3000);
+    const unsigned from = F.tx_count;
+    bus_reads = 0;
+    const uint64_t t0 = F.now_us;
+    F.hook = time_passes_at_reads;
+    F.hook_arg = &F;
+    fw_poll(C);
+    F.hook = NULL;
+    const uint64_t took_us = F.now_us - t0;
+    const unsigned ans = index_of(from, proto_table[PM_ACK].function, PM_MOVE_COMMIT);
+    print_message("validation: %u reads of the bus, %.0f ms\n", bus_reads, (double)took_us / 1000.0);
+    assert_true(took_us >= 300000u); /* long enough to need several periods of each */
+    /* Due every 100 ms (status_ms) and 50 ms (telemetry_ms), from the poll's start. */
+    const unsigned statuses = count_of(from, ans, PM_STATUS);
+    assert_true(statuses >= (unsigned)(took_us / 100000u));
+    assert_true(count_of(from, ans, PM_SLIDES_A) >= (unsigned)(took_us / 50000u));
+    assert_int_equal(count_of(from, ans, PM_FK_C), count_of(from, ans, PM_SLIDES_A));
+    for (unsigned i = from; i < ans; ++i) {
+        const uint8_t fn = (uint8_t)(F.tx[i].id >> PROTO_NODE_BITS);
+        if (fn == proto_table[PM_STATUS].function) {
+            proto_message m;
+            assert_int_equal(proto_decode(&F.tx[i], PROTO_TO_HOST, &m).reason, FW_REASON_NONE);
+            assert_int_equal(m.v[0], FW_STATE_MOVING);
+            assert_int_equal(m.v[5], running);
+        } else if (fn == proto_table[PM_SLIDES_A].function) {
+            assert_true(i + 5u < ans);
+            for (unsigned k = 1; k < 6; ++k)
+                assert_int_equal(F.tx[i + k].id >> PROTO_NODE_BITS,
+                                 proto_table[k < 3 ? PM_SLIDES_A + k : PM_FK_A + (k - 3u)].function);
+        }
+    }
 }
 
 /* ---- two contexts ---- */
@@ -306,6 +379,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_work_looks_every_stride),
         cmocka_unit_test(test_stop_ends_a_validation),
+        cmocka_unit_test(test_status_and_telemetry_during_a_validation),
         cmocka_unit_test(test_tick_in_a_thread_of_its_own),
         cmocka_unit_test(test_heartbeats_taken_while_waiting),
         cmocka_unit_test(test_watchdog_judges_what_the_thread_read),

@@ -24,8 +24,9 @@
  * after every call; the thread reads a consistent copy (a sequence counter, retried if the tick
  * wrote meanwhile).  Nothing the tick reads is guarded by a lock.  A long validation (a move, a
  * blend, a trajectory row) runs in the thread in pieces (fw/work.h): between two pieces the
- * thread takes heartbeats, and a STOP or an e-stop frame ends the validation at once when the
- * robot moves.
+ * thread takes heartbeats, sends its STATUS and telemetry when due, and a STOP or an e-stop frame
+ * ends the validation at once when the robot moves; other commands wait their turn in the
+ * thread's inbox and are answered in order.
  *
  * On a platform with one context (fw_config.await NULL), fw_run_period is a control period in
  * the order the board's interrupts give it: the thread's work on what arrived before the period

@@ -1,7 +1,9 @@
 /* Long work in pieces.  Validation walks a path piece by piece or segment by segment (a move, a
  * blend, a trajectory row): each calls fw_work_point() once per piece, which every few calls
- * gives the controller's thread a look at the bus (heartbeats taken, a STOP or an e-stop seen:
- * fw/runtime.h) and counts its progress for the watchdog.  A walk told to stop returns at once,
+ * gives the controller's thread a look at the bus (heartbeats taken, a STOP or an e-stop seen,
+ * STATUS and telemetry sent when due: fw/runtime.h) and counts its progress for the watchdog.
+ * So however long a validation takes, the board is never held from the bus longer than a few
+ * pieces' work (`frame_worst` in scripts/target_bench.sh, docs/validation.md).  A walk told to stop returns at once,
  * refused as FW_REASON_STATE (the caller knows why).
  *
  * Outside the controller's thread (host tools, tests of the planner) nothing is watching: the
