@@ -51,6 +51,11 @@ TSE_PY_API int tse_py_traj_check(const int *params, int n_params, const double p
                                  const unsigned *dt_us, const double *poses, long *row, int reject[7],
                                  double *v_peak, double *a_peak);
 
+/* A REJECT's seven fields (function, seq, reason, scissor, kin_status, field, where: raw, as the
+ * frame carries them) in tsectl's words, "rejected: REASON: explanation", into buf (cap bytes, 512
+ * hold any); returns buf. */
+TSE_PY_API const char *tse_py_reject_text(const int fields[7], char *buf, size_t cap);
+
 /* tse-kin plan's planner (planner/): waypoints poses[n][6] (m, rad), each with a time t[n] and a
  * plate speed cap v[n] (NaN where free; t and v may be NULL), under the controller's parameter set
  * params[n_params] (raw, as for tse_py_traj_check), rows `period` s apart, corners cut by at most

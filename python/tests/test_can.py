@@ -5,6 +5,7 @@ before anything reaches the bus.  The client against tse-sim runs in the vcan ha
 import math
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import can as pycan
@@ -71,18 +72,32 @@ def test_codec_refuses_what_the_table_does_not_describe():
     assert e.value.reason == "unknown"
 
 
-def test_reject_words_are_tsectls():
-    out = subprocess.run([tool("TSE_REJECT_WORDS", "python/tse_py_reject_words")], check=True, capture_output=True,
-                         text=True).stdout.splitlines()
-    assert len(out) > 40000
-    names = [f[0] for f in P.MESSAGES["REJECT"][3]]
-    differ = []
-    for line in out:
-        key, text = line.split("\t", 1)
-        raw = dict(zip(names, map(int, key.split())))
-        if tcan.reject_words(raw) != text:
-            differ.append((key, text, tcan.reject_words(raw)))
-    assert not differ, f"{len(differ)} differ, e.g. {differ[:2]}"
+def test_reject_words_are_tsectls_own():
+    """tse.can words a REJECT with tsectl's text itself (reject_text.c in libtse_kin.so): every reason
+    begins "rejected: <its wire name>:", and the fields are read as the wire defines them (slides in
+    frame order A1, B1, A2, ...; the slide plus REJECT_LIMIT_STRIDE times the limit's code; where in
+    thousandths of the limit)."""
+    traj = P.MESSAGES["TRAJ_COMMIT"][0]
+    for code, name in P.ENUMS["reason"].items():
+        if code == 0:
+            continue
+        words = tcan.reject_words({"function": traj, "seq": 1, "reason": code, "scissor": 1, "kin_status": 0,
+                                   "field": 0, "where": 0})
+        assert words.startswith(f"rejected: {name}:"), words
+    amax = next(c for c, (n, _w) in P.CODES["slide_limit"].items() if n == "slide_amax")
+    words = tcan.reject_words({"function": traj, "seq": 1, "reason": next(c for c, n in P.ENUMS["reason"].items() if n == "timing"),
+                               "scissor": 2, "kin_status": 0, "field": 3 + amax * P.REJECT_LIMIT_STRIDE,
+                               "where": 1350})
+    assert words.startswith("rejected: timing: TRAJ_COMMIT: slide A2 (scissor 2) would need 1.35 times"), words
+
+
+def test_reject_words_without_the_library_name_the_reason():
+    code = ("import tse.can as c, tse._protocol as P\n"
+            "print(c.reject_words({'function': P.MESSAGES['MOVE_COMMIT'][0], 'seq': 1, 'reason': 4, 'scissor': 0,"
+            " 'kin_status': 0, 'field': 1, 'where': 0}))")
+    env = dict(os.environ, TSE_KIN_LIB="/nonexistent/libtse_kin.so")
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True, env=env).stdout
+    assert out.startswith("rejected: state: MOVE_COMMIT (fields [") and "no words" in out, out
 
 
 def test_rejected_carries_the_reason_scissor_status_and_path_fraction():

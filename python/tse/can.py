@@ -146,7 +146,7 @@ first filled (this client's own pace; None if it never filled: then rows_per_s i
 _AT_REST = ("idle", "disabled", "fault", "estop")
 _TELEMETRY_ORDER = ("SLIDES_A", "SLIDES_B", "SLIDES_C", "FK_A", "FK_B", "FK_C")  # a period's frames as sent
 _TELEMETRY_FUNCTIONS = frozenset(_P.MESSAGES[m][0] for m in _TELEMETRY_ORDER)
-_SLIDES = ("A1", "B1", "A2", "B2", "A3", "B3")
+_REJECT_FIELDS = tuple(f[0] for f in _P.MESSAGES["REJECT"][3])  # function, seq, reason, ...
 
 
 def _status_of(v):
@@ -234,136 +234,25 @@ def _command_name(function):
     return _BY_FUNCTION.get((function, "to_controller"), "?")
 
 
-def _state_advice(function, state):
-    m = _command_name(function)
-    if state in ("fault", "estop"):
-        if m == "CLEAR_FAULT":
-            return "the e-stop input is open: close it, then clear"
-        return "clear it first ('tsectl clear'), then enable and home"
-    if m == "HOME":
-        if state == "homing":
-            return "homing is already running: wait for it ('tsectl home --wait' waits)"
-        if state == "disabled":
-            return "enable the drives first ('tsectl enable')"
-        return "wait until the motion ends, or stop it ('tsectl stop')"
-    if m == "ENABLE":
-        return "try again" if state == "disabled" else "the drives are already enabled"
-    if m == "DISABLE":
-        return "stop the motion first ('tsectl stop'), then disable"
-    if m == "CLEAR_FAULT":
-        return "there is no fault to clear"
-    if m in ("MOVE_COMMIT", "TRAJ_COMMIT"):
-        if state == "disabled":
-            return "enable and home first ('tsectl enable', 'tsectl home --wait')"
-        if state == "homing":
-            return "wait for homing to end ('tsectl home --wait')"
-        if state == "stopping":
-            return ("the controller is bringing the robot to rest (a STOP, a fault or the host falling "
-                    "behind ended the motion): wait until it is idle, then start again")
-        return ("another motion is running or stopping: wait for it to end, or stop it "
-                "('tsectl stop'); this controller does not queue a move behind a running one")
-    if m in ("PARAM_SET", "PARAM_SAVE"):
-        return "parameters change only while disabled or in fault: stop, then 'tsectl disable'"
-    return "see 'tsectl --help' for what each state accepts"
-
-
 def _param_name(pid):
     return _P.PARAMS[pid][0] if 0 <= pid < len(_P.PARAMS) else None
 
 
-def _ended_words(cmd, how, fault, ms):
-    ago = "65.5 s or more" if ms >= 65535 else f"{ms} ms"
-    how, fault = _enum("traj_end", how), _enum("fault", fault)
-    if how == "done":
-        return f"rejected: ended: {cmd}: its trajectory had run to its last row {ago} before this row came"
-    if how == "stop":
-        return f"rejected: ended: {cmd}: its trajectory was ended by a STOP {ago} before this row came; nothing more of it is taken"
-    if how == "fault" and fault == "underrun":
-        return (f"rejected: ended: {cmd}: this row came {ago} late: the controller had run out of path (underrun) and "
-                "stopped the robot; the host must keep the queue ahead (stream faster, or raise traj_lead)")
-    if how == "fault" and fault == "estop":
-        return f"rejected: ended: {cmd}: its trajectory was ended by an e-stop {ago} before this row came"
-    if how == "fault":
-        return f"rejected: ended: {cmd}: its trajectory was ended by a {fault} fault {ago} before this row came"
-    return (f"rejected: ended: {cmd}: no trajectory of this row's identity is running (a trajectory starts with a row "
-            "flagged first, taken while the controller is idle)")
-
-
 def reject_words(raw):
     """A REJECT's fields (raw values, as decode gives them) in tsectl's words:
-    "rejected: REASON: explanation" (host_tools/tsectl/reject_text.c; a test holds the two equal)."""
-    function, reason, scissor, kin, field, where = (raw[k] for k in
-                                                   ("function", "reason", "scissor", "kin_status", "field", "where"))
-    rn, cmd = _enum("reason", reason), _command_name(function)
-    if rn == "kinematics":
-        return (f"rejected: kinematics: {cmd}: scissor {scissor} is {_enum('kin_status', kin)} at "
-                f"{where / 10.0:.1f}% of the path (the pose, or the path to it, leaves the workspace "
-                f"with its margins; 'tse-kin ik' shows the pose's status)")
-    if rn == "too_long":
-        if field == 0:
-            return (f"rejected: too_long: {cmd}: the move would last longer than the {where} s a move may (its "
-                    "speed too slow, or its duration too long once stretched to the slide limits): ask a faster "
-                    "speed or a shorter duration, or split the move")
-        return (f"rejected: too_long: {cmd}: the path comes so near a limit (scissor {scissor} "
-                f"{_enum('kin_status', kin)}) at {where / 10.0:.1f}% of its length that the controller cannot "
-                "check so long a move within one frame: split it into shorter moves, or keep the path farther "
-                "from that limit")
-    if rn == "timing":
-        limit, slide = divmod(field, _P.REJECT_LIMIT_STRIDE)  # the slide, plus the stride times the limit
-        slide = _SLIDES[slide - 1] if 1 <= slide <= 6 else "?"
-        ratio = f"{where / 1000.0:.2f}"
-        name, words = _P.CODES["slide_limit"].get(limit, (None, None))
-        if name == "slide_amax":
-            return (f"rejected: timing: {cmd}: slide {slide} (scissor {scissor}) would need {ratio} times {words}: "
-                    "the speed changes too abruptly here. Between points the plate moves at constant speed, so "
-                    "every change of speed at a point must be small: ease in and out, sample a smooth path "
-                    "(10-50 ms apart), and start at rest where the plate is")
-        if words is None:
-            return (f"rejected: timing: {cmd}: slide {slide} (scissor {scissor}) would need {ratio} times a limit "
-                    f"this tsectl does not know (code {limit}; a firmware newer than tsectl?)")
-        more = (where - 1000 + 9) // 10 if where > 1000 else 1
-        return (f"rejected: timing: {cmd}: slide {slide} (scissor {scissor}) would need {ratio} times {words}: "
-                f"give this point at least {more}% more time from the previous one")
-    if rn == "state":
-        return (f"rejected: state: {cmd} is not taken while the controller is {_enum('state', field)}: "
-                f"{_state_advice(function, _enum('state', field))}")
-    if rn == "not_homed":
-        return f"rejected: not_homed: {cmd}: the slides have no zero yet: home first ('tsectl home --wait')"
-    if rn == "range":
-        entry = _BY_FUNCTION.get((function, "to_controller"))
-        fields = _P.MESSAGES[entry][3] if entry else ()
-        if field < len(fields):
-            return f"rejected: range: {cmd}.{fields[field][0]} is outside [{fields[field][3]}, {fields[field][4]}] (raw units)"
-        return f"rejected: range: {cmd}: field {field} is outside its range"
-    if rn == "param_unknown":
-        return f"rejected: param_unknown: this controller has no parameter {field} (firmware older than tsectl?)"
-    if rn == "param_range":
-        return (f"rejected: param_range: {_param_name(field) or 'the parameter'} is outside its range "
-                "(see 'tsectl params list')")
-    if rn == "param_set":
-        _name, words = _P.CODES["param_rule"].get(where, (None, None))
-        if words is None:
-            return (f"rejected: param_set: {_param_name(field) or 'the parameter'}: the set breaks a rule this "
-                    f"tsectl does not know (code {where}; a firmware newer than tsectl?); nothing was changed")
-        return f"rejected: param_set: {_param_name(field) or 'the parameter'}: {words}; nothing was changed"
-    if rn == "storage":
-        return ("rejected: storage: the controller could not write its parameter store (on the board a flash "
-                "erase or write failed; in tse-sim, no --params FILE or the file could not be written): nothing "
-                "was saved, the running parameters are unchanged but are lost at power-off")
-    if rn == "queue_full":
-        return f"rejected: queue_full: {cmd}: the trajectory queue is full (send when STATUS shows room)"
-    if rn == "stale":
-        return (f"rejected: stale: {cmd}: its sequence number is not newer than the last accepted (another host "
-                "commanding this node?)")
-    if rn == "order":
-        return (f"rejected: order: {cmd}: not the next row of its trajectory (the controller expects sequence number "
-                f"{field}): a row before it was refused or lost; nothing was taken (send again from the first row not "
-                "acknowledged)")
-    if rn == "ended":
-        return _ended_words(cmd, field & 15, field >> 4, where)
-    if rn == "incomplete":
-        return f"rejected: incomplete: {cmd}: a part of its pose did not arrive (frames lost on the bus?)"
-    return f"rejected: {rn}: {cmd} (a protocol mismatch between tsectl and the controller?)"
+    "rejected: REASON: explanation", from tsectl's own text (reject_text.c in libtse_kin.so), so the
+    two cannot differ.  Without the library: the reason and the raw fields, and why no more."""
+    fields = [int(raw[k]) for k in _REJECT_FIELDS]
+    try:
+        from . import _native
+        f = _native.load().tse_py_reject_text
+    except (ImportError, OSError, AttributeError) as e:
+        return (f"rejected: {_enum('reason', raw['reason'])}: {_command_name(raw['function'])} "
+                f"(fields {fields}; no words: {e})")
+    f.restype = ctypes.c_char_p
+    f.argtypes = [ctypes.c_int * 7, ctypes.c_char_p, ctypes.c_size_t]
+    buf = ctypes.create_string_buffer(512)
+    return f((ctypes.c_int * 7)(*fields), buf, len(buf)).decode()
 
 
 # --- The trajectory check, tsectl's (libtse_kin.so) -------------------------------------------------
