@@ -51,7 +51,7 @@ static fw_reason commit_target(const fw_controller *c, uint8_t seq, tse_real pos
     if (!(th->view.flags & FW_VIEW_HOMED))
         return FW_REASON_NOT_HOMED;
     for (int k = 0; k < 6; ++k)
-        pose[k] = (tse_real)th->stage_v[k] * TSE_R(1e-6);
+        pose[k] = (tse_real)th->stage_v[k] * (TSE_R(1.0) / (tse_real)proto_pose_units(k));
     return FW_REASON_NONE;
 }
 
@@ -102,8 +102,8 @@ static void move_commit(fw_controller *c, const proto_message *m, uint8_t functi
         return;
     }
     const fw_move_kind kind = m->v[1] == 0 ? FW_MOVE_DURATION : FW_MOVE_SPEED;
-    const tse_real value = kind == FW_MOVE_DURATION ? (tse_real)m->v[2] * TSE_R(1e-3)
-                                                    : (tse_real)m->v[2] * TSE_R(1e-6);
+    const tse_real value =
+        (tse_real)m->v[2] * (TSE_R(1.0) / (tse_real)(kind == FW_MOVE_DURATION ? PROTO_MS_PER_S : PROTO_UM_PER_M));
     fw_plan_result why;
     switch (fw_plan_commit(c, to, kind, value, queued, &why)) {
     case FW_PLAN_STOPPED:

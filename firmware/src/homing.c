@@ -260,7 +260,7 @@ fw_homing_outcome fw_homing_tick(fw_controller *c)
     const tse_real dv = accel * dt;
     const tse_real spm = (tse_real)c->tick.params.v[FP_STEPS_PER_M];
     home_speeds hs;
-    hs.v_home = (tse_real)c->tick.params.v[FP_HOMING_SPEED] * TSE_R(1e-6);
+    hs.v_home = (tse_real)c->tick.params.v[FP_HOMING_SPEED] * (TSE_R(1.0) / PROTO_UM_PER_M);
     /* Homing moves slides like any motion: within the slide speed limit and what the step
      * generator can step (both in lim.slide_vmax), however fast homing_speed asks. */
     if (hs.v_home > c->tick.lim.slide_vmax)
@@ -269,7 +269,7 @@ fw_homing_outcome fw_homing_tick(fw_controller *c)
     const tse_real half_step_per_tick = TSE_R(0.5) * (tse_real)c->cfg.segment_hz / spm;
     if (hs.creep > half_step_per_tick)
         hs.creep = half_step_per_tick;
-    hs.backoff = (tse_real)c->tick.params.v[FP_HOMING_BACKOFF] * TSE_R(1e-6);
+    hs.backoff = (tse_real)c->tick.params.v[FP_HOMING_BACKOFF] * (TSE_R(1.0) / PROTO_UM_PER_M);
     /* Braking from the homing speed covers v^2 / 2a, plus a tick at full speed per ramp step. */
     hs.brake = hs.v_home * hs.v_home / (TSE_R(2.0) * accel) + hs.v_home * dt;
     hs.stroke = c->tick.geom.p.s_max - c->tick.geom.p.s_min;

@@ -2,6 +2,8 @@
 
 #include <string.h>
 
+#include "fw/proto_table.h"
+
 /* The STEP pulse against the step interrupt period T = 1e9 / step_hz ns: it must end within the
  * period it rose in (the step generator changes DIR only at a tick, so DIR never changes under a
  * high STEP, and a board that ends the pulse from its step timer has a compare within the period),
@@ -81,7 +83,7 @@ int fw_speed_limit_from_params(const fw_param_set *s, uint32_t step_hz, uint32_t
     /* The step generator's ceiling, with room for the rounding of each segment to whole steps; a
      * segment that reverses loses its direction set-up. */
     v->segment_steps = stepgen_capacity(&v->sc, true);
-    v->by_param = (tse_real)s->v[FP_SLIDE_VMAX] * TSE_R(1e-6);
+    v->by_param = (tse_real)s->v[FP_SLIDE_VMAX] * (TSE_R(1.0) / PROTO_UM_PER_M);
     v->by_steps = FW_STEP_RATE_MARGIN * (tse_real)v->segment_steps * (tse_real)segment_hz /
                   (tse_real)s->v[FP_STEPS_PER_M];
     v->by = v->by_steps < v->by_param ? FW_LIMIT_STEP_GENERATOR : FW_LIMIT_SLIDE_VMAX;

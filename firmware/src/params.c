@@ -1,6 +1,7 @@
 #include "fw/params.h"
 
 #include "fw/doc.h"
+#include "fw/proto_table.h"
 #include "fw/types.h"
 #include "fw/joint_path.h"
 #include "tse/ik.h"
@@ -139,8 +140,8 @@ static fw_param_fault check_switches(const fw_param_set *s, const tse_params *p)
     const tse_real c = tse_cos(TSE_R(2.0) * p->eta);
     const tse_real w_lo = TSE_R(2.0) * p->k1 * p->L * tse_cos(p->alpha_max);
     for (int j = 0; j < 3; ++j) {
-        const tse_real a = (tse_real)s->v[FP_HOME_SW_1 + 2 * j] * TSE_R(1e-6);
-        const tse_real b = (tse_real)s->v[FP_HOME_SW_1 + 2 * j + 1] * TSE_R(1e-6);
+        const tse_real a = (tse_real)s->v[FP_HOME_SW_1 + 2 * j] * (TSE_R(1.0) / PROTO_UM_PER_M);
+        const tse_real b = (tse_real)s->v[FP_HOME_SW_1 + 2 * j + 1] * (TSE_R(1.0) / PROTO_UM_PER_M);
         const tse_real w2 = a * a + b * b + TSE_R(2.0) * c * a * b;
         if (w2 < w_lo * w_lo)
             return fault(FP_HOME_SW_1 + 2 * j, FW_RULE_SWITCH_REACH);
@@ -169,7 +170,7 @@ static fw_param_fault check_home(const fw_param_set *s, const tse_params *p)
      * goes to the switch farthest from the others' mean. */
     tse_real from[6], where, mean = TSE_R(0.0);
     for (int k = 0; k < 6; ++k) {
-        from[k] = (tse_real)s->v[FP_HOME_SW_1 + k] * TSE_R(1e-6);
+        from[k] = (tse_real)s->v[FP_HOME_SW_1 + k] * (TSE_R(1.0) / PROTO_UM_PER_M);
         mean += from[k] / TSE_R(6.0);
     }
     int scissor, odd = 0;

@@ -134,8 +134,8 @@ const proto_enum_def proto_enums[] = {
 
 /* Field shorthands: name, type, byte offset, raw range, unit, scale, value names, doc. */
 #define SEQ(off) {"seq", PF_U8, off, 0, 255, "", 1.0, 0, FW_DOC("sequence number, echoed in ACK/REJECT")}
-#define POS24(nm, off, doc) {nm, PF_I24, off, -4000000, 4000000, "m", 1e-6, 0, FW_DOC(doc)}
-#define ANG24(nm, off, doc) {nm, PF_I24, off, -3141593, 3141593, "rad", 1e-6, 0, FW_DOC(doc)}
+#define POS24(nm, off, doc) {nm, PF_I24, off, -PROTO_POS_MAX_UM, PROTO_POS_MAX_UM, "m", 1.0 / PROTO_UM_PER_M, 0, FW_DOC(doc)}
+#define ANG24(nm, off, doc) {nm, PF_I24, off, -PROTO_ANGLE_MAX_URAD, PROTO_ANGLE_MAX_URAD, "rad", 1.0 / PROTO_URAD_PER_RAD, 0, FW_DOC(doc)}
 #define FULL_I32(nm, off, unit, scale, doc) {nm, PF_I32, off, INT32_MIN, INT32_MAX, unit, scale, 0, FW_DOC(doc)}
 
 const proto_def proto_table[PM_COUNT] = {
@@ -184,7 +184,7 @@ const proto_def proto_table[PM_COUNT] = {
       {"seq", PF_U8, 1, 0, 255, "", 1.0, 0, FW_DOC("its sequence number")},
       {"queue_depth", PF_U8, 2, 0, 255, "", 1.0, 0, FW_DOC("trajectory points waiting")},
       {"queue_free", PF_U8, 3, 0, 255, "", 1.0, 0, FW_DOC("trajectory points that may still be sent")},
-      {"detail", PF_U32, 4, 0, INT32_MAX, "s", 1e-3, 0,
+      {"detail", PF_U32, 4, 0, INT32_MAX, "s", 1.0 / PROTO_MS_PER_S, 0,
        FW_DOC("for a move: its planned duration (after any stretching to the slide limits)")}},
      FW_DOC("Every accepted command gets one; it is also the flow control of trajectory streaming.")},
     {PM_HOST_HEARTBEAT, 0x05, "HOST_HEARTBEAT", PROTO_TO_CONTROLLER, 1, 1,
@@ -216,14 +216,14 @@ const proto_def proto_table[PM_COUNT] = {
     {PM_MOVE_COMMIT, 0x0D, "MOVE_COMMIT", PROTO_TO_CONTROLLER, 6, 3,
      {SEQ(0),
       {"kind", PF_U8, 1, 0, 1, "", 1.0, proto_move_kind_names, FW_DOC("what value gives")},
-      {"value", PF_U32, 2, 1, FW_MOVE_MAX_S * 1000, "ms or um/s", 1.0, 0,
+      {"value", PF_U32, 2, 1, PROTO_MOVE_VALUE_MAX, "ms or um/s", 1.0, 0,
        FW_DOC("for kind duration, the move's duration in ms; for kind speed, the plate's speed in um/s")}},
      FW_DOC("Move to the staged pose of this sequence number, straight in position with the orientation "
      "interpolated. Applied only if all three parts of this sequence arrived and it is newer than "
      "the last accepted; the whole path is validated before the first step.")},
     {PM_TRAJ_COMMIT, 0x0E, "TRAJ_COMMIT", PROTO_TO_CONTROLLER, 7, 4,
      {SEQ(0),
-      {"dt", PF_U32, 1, 1000, 60000000, "s", 1e-6, 0,
+      {"dt", PF_U32, 1, PROTO_DT_MIN_US, PROTO_DT_MAX_US, "s", 1.0 / PROTO_US_PER_S, 0,
        FW_DOC("time from the previous row (the first row: from the trajectory's start)")},
       {"flags", PF_U8, 5, 0, 3, "", 1.0, 0, FW_DOC("the row's place in its trajectory")},
       {"traj", PF_U8, 6, 0, 255, "", 1.0, 0,
@@ -258,23 +258,23 @@ const proto_def proto_table[PM_COUNT] = {
       {"counter", PF_U16, 6, 0, 65535, "", 1.0, 0, FW_DOC("free-running")}},
      FW_DOC("Heartbeat of the controller, every status period.")},
     {PM_SLIDES_A, 0x21, "SLIDES_A", PROTO_TO_HOST, 8, 2,
-     {FULL_I32("s_a1", 0, "m", 1e-9, "slide A1"), FULL_I32("s_b1", 4, "m", 1e-9, "slide B1")},
+     {FULL_I32("s_a1", 0, "m", 1.0 / PROTO_NM_PER_M, "slide A1"), FULL_I32("s_b1", 4, "m", 1.0 / PROTO_NM_PER_M, "slide B1")},
      FW_DOC("Commanded slide positions (the steps emitted), every telemetry period. A slide beyond "
      "2.147483647 m (the stroke may reach 5 m) is sent as the field's end.")},
     {PM_SLIDES_B, 0x22, "SLIDES_B", PROTO_TO_HOST, 8, 2,
-     {FULL_I32("s_a2", 0, "m", 1e-9, "slide A2"), FULL_I32("s_b2", 4, "m", 1e-9, "slide B2")},
+     {FULL_I32("s_a2", 0, "m", 1.0 / PROTO_NM_PER_M, "slide A2"), FULL_I32("s_b2", 4, "m", 1.0 / PROTO_NM_PER_M, "slide B2")},
      FW_DOC("Slides of scissor 2.")},
     {PM_SLIDES_C, 0x23, "SLIDES_C", PROTO_TO_HOST, 8, 2,
-     {FULL_I32("s_a3", 0, "m", 1e-9, "slide A3"), FULL_I32("s_b3", 4, "m", 1e-9, "slide B3")},
+     {FULL_I32("s_a3", 0, "m", 1.0 / PROTO_NM_PER_M, "slide A3"), FULL_I32("s_b3", 4, "m", 1.0 / PROTO_NM_PER_M, "slide B3")},
      FW_DOC("Slides of scissor 3.")},
     {PM_FK_A, 0x24, "FK_A", PROTO_TO_HOST, 8, 2,
-     {FULL_I32("x", 0, "m", 1e-6, "plate X"), FULL_I32("y", 4, "m", 1e-6, "plate Y")},
+     {FULL_I32("x", 0, "m", 1.0 / PROTO_UM_PER_M, "plate X"), FULL_I32("y", 4, "m", 1.0 / PROTO_UM_PER_M, "plate Y")},
      FW_DOC("Plate pose from the forward kinematics of the slide positions, every telemetry period.")},
     {PM_FK_B, 0x25, "FK_B", PROTO_TO_HOST, 8, 2,
-     {FULL_I32("z", 0, "m", 1e-6, "plate Z"), FULL_I32("roll", 4, "rad", 1e-6, "roll")},
+     {FULL_I32("z", 0, "m", 1.0 / PROTO_UM_PER_M, "plate Z"), FULL_I32("roll", 4, "rad", 1.0 / PROTO_URAD_PER_RAD, "roll")},
      FW_DOC("Pose part 2.")},
     {PM_FK_C, 0x26, "FK_C", PROTO_TO_HOST, 8, 2,
-     {FULL_I32("pitch", 0, "rad", 1e-6, "pitch"), FULL_I32("yaw", 4, "rad", 1e-6, "yaw")},
+     {FULL_I32("pitch", 0, "rad", 1.0 / PROTO_URAD_PER_RAD, "pitch"), FULL_I32("yaw", 4, "rad", 1.0 / PROTO_URAD_PER_RAD, "yaw")},
      FW_DOC("Pose part 3.")},
     {PM_PARAM_VALUE, 0x27, "PARAM_VALUE", PROTO_TO_HOST, 6, 2,
      {{"param", PF_U16, 0, 0, 65535, "", 1.0, 0, FW_DOC("parameter id")},

@@ -1,5 +1,7 @@
 #include "steps.h"
 
+#include "fw/proto_table.h"
+
 int32_t fw_steps_of(const fw_param_set *p, tse_real s)
 {
     const tse_real x = s * (tse_real)p->v[FP_STEPS_PER_M];
@@ -15,5 +17,5 @@ int32_t fw_steps_of_um(const fw_param_set *p, int32_t um)
 int32_t fw_switch_steps(const fw_param_set *p, int k)
 {
     /* The last whole step at or below the switch (home_sw_k >= s_min >= 0): pressed there. */
-    return (int32_t)((int64_t)p->v[FP_HOME_SW_1 + k] * p->v[FP_STEPS_PER_M] / 1000000);
+    return (int32_t)((int64_t)p->v[FP_HOME_SW_1 + k] * p->v[FP_STEPS_PER_M] / PROTO_UM_PER_M);
 }

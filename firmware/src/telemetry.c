@@ -26,7 +26,7 @@ static void send_status(fw_controller *c, const fw_view *v)
  * nanometres holds (2.147 m): past it the field's end is sent, not an undefined conversion. */
 static int32_t wire_nm(tse_real s)
 {
-    const tse_real nm = s * TSE_R(1e9);
+    const tse_real nm = s * (tse_real)PROTO_NM_PER_M;
     if (nm >= TSE_R(2147483647.0))
         return INT32_MAX;
     if (nm <= TSE_R(-2147483648.0))
@@ -51,7 +51,8 @@ static void send_telemetry(fw_controller *c, const fw_view *v)
     if (tse_fk(&c->th.geom, q, seed, &fk) != TSE_OK)
         return;
     for (int k = 0; k < 3; ++k) {
-        const int32_t s[2] = {(int32_t)(fk.pose[2 * k] * TSE_R(1e6)), (int32_t)(fk.pose[2 * k + 1] * TSE_R(1e6))};
+        const int32_t s[2] = {(int32_t)(fk.pose[2 * k] * (tse_real)proto_pose_units(2 * k)),
+                              (int32_t)(fk.pose[2 * k + 1] * (tse_real)proto_pose_units(2 * k + 1))};
         fw_send(c, (proto_msg)(PM_FK_A + k), s);
     }
 }

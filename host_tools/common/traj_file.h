@@ -32,13 +32,15 @@
 
 #include <stddef.h>
 
+#include "fw/proto_table.h"
+
 #define TRAJ_FILE_MAX_ROWS 1000000
 
 /* The wire's ranges (see above), in SI. */
-#define TRAJ_FILE_POS_MAX 4.0         /* m */
-#define TRAJ_FILE_ANGLE_MAX 3.141593  /* rad */
-#define TRAJ_FILE_DT_MIN_US 1000LL    /* 0.001 s */
-#define TRAJ_FILE_DT_MAX_US 60000000LL /* 60 s */
+#define TRAJ_FILE_POS_MAX ((double)PROTO_POS_MAX_UM / PROTO_UM_PER_M)               /* m */
+#define TRAJ_FILE_ANGLE_MAX ((double)PROTO_ANGLE_MAX_URAD / PROTO_URAD_PER_RAD)    /* rad */
+#define TRAJ_FILE_DT_MIN_US ((long long)PROTO_DT_MIN_US)
+#define TRAJ_FILE_DT_MAX_US ((long long)PROTO_DT_MAX_US)
 
 typedef struct {
     double t;    /* [s] from the moment the controller starts the trajectory */

@@ -178,8 +178,13 @@ int gen_python(FILE *out)
     fprintf(out,
             "TRAJ_WINDOW = %d\n\n"
             "# REJECT's field for a timing refusal: slide + REJECT_LIMIT_STRIDE * the slide limit's code.\n"
-            "REJECT_LIMIT_STRIDE = %d\n\n",
-            PROTO_TRAJ_WINDOW, PROTO_REJECT_LIMIT_STRIDE);
+            "REJECT_LIMIT_STRIDE = %d\n\n"
+            "# The wire's units (raw counts per SI unit) and ranges (raw).\n"
+            "UM_PER_M = %d\nURAD_PER_RAD = %d\nNM_PER_M = %d\nUS_PER_S = %d\nMS_PER_S = %d\nPER_MILLE = %d\n"
+            "POS_MAX_UM = %d\nANGLE_MAX_URAD = %d\nDT_MIN_US = %d\nDT_MAX_US = %d\nMOVE_VALUE_MAX = %d\n\n",
+            PROTO_TRAJ_WINDOW, PROTO_REJECT_LIMIT_STRIDE, PROTO_UM_PER_M, PROTO_URAD_PER_RAD, PROTO_NM_PER_M,
+            PROTO_US_PER_S, PROTO_MS_PER_S, PROTO_PER_MILLE, PROTO_POS_MAX_UM, PROTO_ANGLE_MAX_URAD,
+            PROTO_DT_MIN_US, PROTO_DT_MAX_US, PROTO_MOVE_VALUE_MAX);
     fprintf(out, "# STATUS's flags: the bit of each.\nSTATUS_FLAGS = {\n");
     for (const proto_flag *b = proto_status_flags; b->name; ++b)
         fprintf(out, "    \"%s\": 0x%02lX,\n", b->name, (unsigned long)b->mask);

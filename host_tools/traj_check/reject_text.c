@@ -95,6 +95,12 @@ static void ended_text(char *buf, size_t cap, const char *cmd, int how, int faul
                  cmd);
 }
 
+/* REJECT's where, thousandths, as a percentage. */
+static double percent(int where)
+{
+    return where * 100.0 / PROTO_PER_MILLE;
+}
+
 const char *reject_text(const proto_message *r, char *buf, size_t cap)
 {
     const int function = r->v[0], reason = r->v[2], scissor = r->v[3], kin = r->v[4], field = r->v[5],
@@ -106,7 +112,7 @@ const char *reject_text(const proto_message *r, char *buf, size_t cap)
         snprintf(buf, cap,
                  "rejected: kinematics: %s: scissor %d is %s at %.1f%% of the path (the pose, or the "
                  "path to it, leaves the workspace with its margins; 'tse-kin ik' shows the pose's status)",
-                 cmd, scissor, proto_enum_name(proto_kin_status_names, kin), where / 10.0);
+                 cmd, scissor, proto_enum_name(proto_kin_status_names, kin), percent(where));
         break;
     case FW_REASON_TOO_LONG:
         if (field == 0)
@@ -120,11 +126,11 @@ const char *reject_text(const proto_message *r, char *buf, size_t cap)
                      "rejected: too_long: %s: the path comes so near a limit (scissor %d %s) at %.1f%% of its "
                      "length that the controller cannot check so long a move within one frame: split it into "
                      "shorter moves, or keep the path farther from that limit",
-                     cmd, scissor, proto_enum_name(proto_kin_status_names, kin), where / 10.0);
+                     cmd, scissor, proto_enum_name(proto_kin_status_names, kin), percent(where));
         break;
     case FW_REASON_TIMING: {
         const int limit = field / FW_REJECT_LIMIT, slide = field % FW_REJECT_LIMIT;
-        const double ratio = where / 1000.0;
+        const double ratio = where / (double)PROTO_PER_MILLE;
         const char *words = proto_code_words(proto_slide_limits, limit);
         if (limit == FW_LIMIT_SLIDE_AMAX)
             snprintf(buf, cap,
@@ -138,7 +144,7 @@ const char *reject_text(const proto_message *r, char *buf, size_t cap)
                      "rejected: timing: %s: slide %s (scissor %d) would need %.2f times %s: give this point at "
                      "least %d%% more time from the previous one",
                      cmd, reject_slide_name(slide), scissor, ratio, words,
-                     where > 1000 ? (where - 1000 + 9) / 10 : 1);
+                     where > PROTO_PER_MILLE ? ((where - PROTO_PER_MILLE) * 100 + PROTO_PER_MILLE - 1) / PROTO_PER_MILLE : 1);
         else
             snprintf(buf, cap,
                      "rejected: timing: %s: slide %s (scissor %d) would need %.2f times a limit this tsectl does "

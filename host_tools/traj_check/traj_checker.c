@@ -21,10 +21,10 @@ int traj_checker_start(traj_checker *c, const fw_param_set *s, const double pose
 int traj_checker_push(traj_checker *c, uint32_t dt_us, const double pose[6], bool last,
                       int32_t reject[PROTO_MAX_FIELDS])
 {
-    /* What the controller makes of the staged parts (commands.c): micro-units times 1e-6. */
+    /* What the controller makes of the staged parts (commands.c): the wire's micro-units. */
     tse_real p[6];
     for (int k = 0; k < 6; ++k)
-        p[k] = (tse_real)lround(pose[k] * 1e6) * TSE_R(1e-6);
+        p[k] = (tse_real)lround(pose[k] * proto_pose_units(k)) * (TSE_R(1.0) / (tse_real)proto_pose_units(k));
     fw_plan_result why;
     if (fw_traj_push(&c->t, &c->g, &c->lim, p, dt_us, last, &why) != 0) {
         fw_reject_values(proto_table[PM_TRAJ_COMMIT].function, 0, why.reason, 0, &why, reject);

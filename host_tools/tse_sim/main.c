@@ -344,11 +344,11 @@ int main(int argc, char **argv)
         fprintf(stderr, "tse-sim: the controller's own parameter set does not derive its step timing\n");
         return 1;
     }
-    plant_config pc = {(double)fp->v[FP_STEPS_PER_M], (double)fp->v[FP_SLIDE_VMAX] * 1e-6,
-                       (double)fp->v[FP_SLIDE_AMAX] * 1e-6, 0.05, STEP_HZ, sc.min_step_interval,
+    plant_config pc = {(double)fp->v[FP_STEPS_PER_M], (double)fp->v[FP_SLIDE_VMAX] / PROTO_UM_PER_M,
+                       (double)fp->v[FP_SLIDE_AMAX] / PROTO_UM_PER_M, 0.05, STEP_HZ, sc.min_step_interval,
                        (uint32_t)fp->v[FP_STEP_PULSE_NS], (uint32_t)fp->v[FP_DIR_SETUP_NS], {0}};
     for (int k = 0; k < 6; ++k)
-        pc.home_sw[k] = (double)fp->v[FP_HOME_SW_1 + k] * 1e-6;
+        pc.home_sw[k] = (double)fp->v[FP_HOME_SW_1 + k] / PROTO_UM_PER_M;
     const plant_kinematics pk = plant_kinematics_of(&fw_geometry_of(s.fw)->p);
     if (plant_init(&s.plant, &pc, &pk, starts) != 0) {
         fprintf(stderr, "tse-sim: the kinematics refuses the controller's own geometry for the plant\n");

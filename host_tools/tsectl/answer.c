@@ -73,7 +73,8 @@ int ctl_answer(tlink *l, int function, int seq, proto_message *ack, proto_messag
 int ctl_send_pose(tlink *l, int seq, const double p[6])
 {
     for (int k = 0; k < 3; ++k) {
-        const int32_t v[3] = {seq, (int32_t)lround(p[2 * k] * 1e6), (int32_t)lround(p[2 * k + 1] * 1e6)};
+        const int32_t v[3] = {seq, (int32_t)lround(p[2 * k] * proto_pose_units(2 * k)),
+                              (int32_t)lround(p[2 * k + 1] * proto_pose_units(2 * k + 1))};
         if (link_send(l, (proto_msg)(PM_POSE_A + k), v) != 0)
             return -1;
     }

@@ -57,11 +57,15 @@ static int parse_move(int argc, char **argv, move_args *a)
     }
     if (npos < 6)
         return usage_error("move", "needs X Y Z (m) ROLL PITCH YAW (rad)", NULL);
-    const double raw = a->kind ? value * 1e6 : value * 1e3;
-    if (!(raw >= 1 && raw <= 3600000)) {
-        char v[32];
+    /* MOVE_COMMIT's value: a speed in um/s or a duration in ms, 1 to PROTO_MOVE_VALUE_MAX. */
+    const double per = a->kind ? PROTO_UM_PER_M : PROTO_MS_PER_S;
+    const double raw = value * per;
+    if (!(raw >= 1 && raw <= PROTO_MOVE_VALUE_MAX)) {
+        char v[32], what[80];
         snprintf(v, sizeof v, "%g", value);
-        return usage_error("move", a->kind ? "--speed must be 1e-6 to 3.6 m/s" : "--duration must be 0.001 to 3600 s", v);
+        snprintf(what, sizeof what, "%s must be %g to %g %s", a->kind ? "--speed" : "--duration", 1.0 / per,
+                 PROTO_MOVE_VALUE_MAX / per, a->kind ? "m/s" : "s");
+        return usage_error("move", what, v);
     }
     a->raw = (int32_t)lround(raw);
     return EXIT_OK;
@@ -105,7 +109,7 @@ int run_move(tlink *l, int argc, char **argv)
     if (rc == EXIT_REJECTED)
         ctl_print_reject(&rej);
     if (rc == EXIT_OK) {
-        const double T = ack.v[4] * 1e-3;
+        const double T = (double)ack.v[4] / PROTO_MS_PER_S;
         printf("move accepted: %.3f s planned%s\n", T, info_words(l, seq));
         rc = a.wait ? ctl_wait_rest(l, T, "moving", 1, NULL) : EXIT_OK;
     }

@@ -37,7 +37,7 @@ const char *move_info_text(const proto_message *info, char *buf, size_t cap)
         snprintf(buf, cap,
                  "%s, slower than asked: the slides set the pace (unstretched, slide %s (scissor %d) would need "
                  "%.2f times its %s)",
-                 how, reject_slide_name(slide), (slide + 1) / 2, demand / 1000.0,
+                 how, reject_slide_name(slide), (slide + 1) / 2, demand / (double)PROTO_PER_MILLE,
                  bound == FW_BOUND_SLIDE_AMAX   ? "acceleration limit, slide_amax"
                  : bound == FW_BOUND_SLIDE_VMAX ? "speed limit, slide_vmax"
                                                 : "speed limit in effect, the step generator's, lower than slide_vmax "

@@ -17,6 +17,19 @@ TRAJ_WINDOW = 4
 # REJECT's field for a timing refusal: slide + REJECT_LIMIT_STRIDE * the slide limit's code.
 REJECT_LIMIT_STRIDE = 16
 
+# The wire's units (raw counts per SI unit) and ranges (raw).
+UM_PER_M = 1000000
+URAD_PER_RAD = 1000000
+NM_PER_M = 1000000000
+US_PER_S = 1000000
+MS_PER_S = 1000
+PER_MILLE = 1000
+POS_MAX_UM = 4000000
+ANGLE_MAX_URAD = 3141593
+DT_MIN_US = 1000
+DT_MAX_US = 60000000
+MOVE_VALUE_MAX = 3600000
+
 # STATUS's flags: the bit of each.
 STATUS_FLAGS = {
     "homed": 0x01,

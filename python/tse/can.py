@@ -147,6 +147,8 @@ _AT_REST = ("idle", "disabled", "fault", "estop")
 _TELEMETRY_ORDER = ("SLIDES_A", "SLIDES_B", "SLIDES_C", "FK_A", "FK_B", "FK_C")  # a period's frames as sent
 _TELEMETRY_FUNCTIONS = frozenset(_P.MESSAGES[m][0] for m in _TELEMETRY_ORDER)
 _REJECT_FIELDS = tuple(f[0] for f in _P.MESSAGES["REJECT"][3])  # function, seq, reason, ...
+_POSE_UNITS = {"x": _P.UM_PER_M, "y": _P.UM_PER_M, "z": _P.UM_PER_M, "roll": _P.URAD_PER_RAD,
+               "pitch": _P.URAD_PER_RAD, "yaw": _P.URAD_PER_RAD}  # FK_A..C's fields
 
 
 def _status_of(v):
@@ -217,7 +219,7 @@ class Rejected(TseError):
         kin = self.reason == "kinematics"
         self.scissor = raw["scissor"] if self.reason in ("kinematics", "timing") else None
         self.status = _enum("kin_status", raw["kin_status"]) if kin else None
-        self.fraction = raw["where"] / 1000.0 if kin else None
+        self.fraction = raw["where"] / _P.PER_MILLE if kin else None
         self.state = _enum("state", raw["field"]) if self.reason == "state" else None
         self.limit = self.rule = None
         if self.reason == "timing":
@@ -545,13 +547,13 @@ class Controller:
             tel.clear()
             return
         if k < 3:
-            tel.append((v[f"s_a{k + 1}"] * 1e-9, v[f"s_b{k + 1}"] * 1e-9))
+            tel.append((v[f"s_a{k + 1}"] / _P.NM_PER_M, v[f"s_b{k + 1}"] / _P.NM_PER_M))
             homed = self._status is not None and self._status.homed
             if k == 2 and not homed:
                 self._publish(Telemetry(stamp, tel[0] + tel[1] + tel[2], None, self._state()))
         else:
             keys = (("x", "y"), ("z", "roll"), ("pitch", "yaw"))[k - 3]
-            tel.append((v[keys[0]] * 1e-6, v[keys[1]] * 1e-6))
+            tel.append(tuple(v[key] / _POSE_UNITS[key] for key in keys))
             if k == 5:
                 self._publish(Telemetry(stamp, tel[0] + tel[1] + tel[2], tel[3] + tel[4] + tel[5], self._state()))
 
@@ -734,10 +736,10 @@ class Controller:
         except (TypeError, ValueError):
             raise ValueError(f"{kind} {value!r} is not a number") from None
         lo, hi = _field("MOVE_COMMIT", "value")[3:5]
-        raw = _round_away(value * (1e6 if kind == "speed" else 1e3)) if math.isfinite(value) else 0
+        per = _P.UM_PER_M if kind == "speed" else _P.MS_PER_S  # MOVE_COMMIT's value: um/s or ms
+        raw = _round_away(value * per) if math.isfinite(value) else 0
         if not lo <= raw <= hi:
-            raise ValueError("speed must be 1e-6 to 3.6 m/s" if kind == "speed" else
-                             "duration must be 0.001 to 3600 s")
+            raise ValueError(f"{kind} must be {lo / per:g} to {hi / per:g} {'m/s' if kind == 'speed' else 's'}")
         p = _pose_raw(pose)
 
         def start():
@@ -747,7 +749,7 @@ class Controller:
                 mark = self._mark()
                 ack = self._command("MOVE_COMMIT", seq=seq, kind=_enum_value("move_kind", kind), value=raw)
                 self.last_move = self._move_info(mark, seq)
-            return ack["detail"] * 1e-3
+            return ack["detail"] / _P.MS_PER_S
         return self._motion(start, "moving", wait)
 
     def _move_info(self, mark, seq):
@@ -757,7 +759,7 @@ class Controller:
             for serial, name, v in self._answers:
                 if serial > mark and name == "MOVE_INFO" and v["seq"] == seq:
                     return MoveInfo(_enum("move_start", v["start"]), _enum("move_bound", v["bound"]), v["slide"],
-                                    v["demand"] / 1000.0)
+                                    v["demand"] / _P.PER_MILLE)
             return None
         try:
             return self._wait_for(pick, min(self.timeout, 0.3), "MOVE_INFO")
@@ -803,10 +805,11 @@ class Controller:
                 raise ValueError(f"row {i}: {e}") from None
             if not math.isfinite(t):
                 raise ValueError(f"row {i}: t = {r[0]!r} is not a finite time")
-            us = _round_away(t * 1e6)  # the wire's whole microseconds, as tsectl rounds them
+            us = _round_away(t * _P.US_PER_S)  # the wire's whole microseconds, as tsectl rounds them
             if not lo_dt <= us - prev_us <= hi_dt:
-                raise ValueError(f"row {i}: t = {t:g} s is {(us - prev_us) * 1e-6:g} s after the "
-                                 f"{'previous row' if i else 'start'}; it must be {lo_dt * 1e-6:g} to {hi_dt * 1e-6:g} s")
+                raise ValueError(f"row {i}: t = {t:g} s is {(us - prev_us) / _P.US_PER_S:g} s after the "
+                                 f"{'previous row' if i else 'start'}; it must be {lo_dt / _P.US_PER_S:g} to "
+                                 f"{hi_dt / _P.US_PER_S:g} s")
             plan.append((us - prev_us, pose))
             prev_us = us
         with self._cmd_lock:
@@ -949,7 +952,7 @@ class Controller:
         fill = (full[0] - 1) / (full[1] - t_first) if full and full[0] > 1 and full[1] > t_first else None
         done = Streamed(n, seconds, (n - 1) / seconds if seconds > 0 else 0.0, fill)
         try:
-            self._wait_rest(max(sum(dt for dt, _ in plan) * 1e-6 - seconds, 0.1), "finishing")
+            self._wait_rest(max(sum(dt for dt, _ in plan) / _P.US_PER_S - seconds, 0.1), "finishing")
         except Fault:
             if self._ended_by(ident) is None:
                 raise

@@ -11,6 +11,8 @@
 
 #include <stdint.h>
 
+#include "fw/types.h"
+
 #define PROTO_NODE_BITS 4
 #define PROTO_NODE_MASK 0x0Fu
 #define PROTO_BROADCAST 0u
@@ -38,6 +40,30 @@
 /* REJECT's field for a timing refusal: the slide (1..6) plus this times the slide limit's code
  * (proto_slide_limit_names). */
 #define PROTO_REJECT_LIMIT_STRIDE 16
+
+/* The wire's units, raw counts per SI unit, and its ranges, written once: the table's scales and
+ * ranges are made of them, and every conversion between SI and the wire (on the board, in the host
+ * tools, and in Python, whose _protocol.py protogen prints them into) is written with them.
+ * Parameters travel in the units of the parameter table (fw/params.h), micro-units among them. */
+#define PROTO_UM_PER_M 1000000      /* a pose's x, y, z in um; a parameter's lengths and speeds */
+#define PROTO_URAD_PER_RAD 1000000  /* a pose's angles in urad */
+#define PROTO_NM_PER_M 1000000000   /* SLIDES' slide positions in nm */
+#define PROTO_US_PER_S 1000000      /* TRAJ_COMMIT's dt in us */
+#define PROTO_MS_PER_S 1000         /* MOVE_COMMIT's duration, MOVE_INFO's times in ms */
+#define PROTO_PER_MILLE 1000        /* REJECT's where and MOVE_INFO's demand: thousandths */
+#define PROTO_POS_MAX_UM 4000000    /* a pose's |x|, |y|, |z| at most 4 m */
+#define PROTO_ANGLE_MAX_URAD 3141593 /* a pose's angles within +-pi */
+#define PROTO_DT_MIN_US 1000        /* a trajectory row's dt: 1 ms ... */
+#define PROTO_DT_MAX_US 60000000    /* ... to 60 s */
+/* MOVE_COMMIT's value: at most FW_MOVE_MAX_S in ms for a duration, the same count of um/s (3.6 m/s)
+ * for a speed; at least 1. */
+#define PROTO_MOVE_VALUE_MAX (FW_MOVE_MAX_S * PROTO_MS_PER_S)
+
+/* Raw units per SI unit of a pose's coordinate k: x, y, z (0..2) in um, the angles in urad. */
+static inline int32_t proto_pose_units(int k)
+{
+    return k < 3 ? PROTO_UM_PER_M : PROTO_URAD_PER_RAD;
+}
 
 /* A number of the table as text, for its documentation strings. */
 #define PROTO_STR_(x) #x
