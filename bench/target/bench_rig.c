@@ -122,14 +122,8 @@ static int st_save(void *c, const void *b, size_t n) { (void)c; (void)b; (void)n
 
 void bench_queue(proto_msg msg, const int32_t *v)
 {
-    proto_message m;
-    memset(&m, 0, sizeof m);
-    m.msg = msg;
-    m.node = 1;
-    for (int i = 0; i < proto_table[msg].nfields; ++i)
-        m.v[i] = v[i];
     hal_can_frame f;
-    proto_encode(&m, &f);
+    proto_encode_values(msg, 1, v, &f);
     if (rx_count == RX_RING)
         fw_poll(bench_ctl); /* room first: the rig never drops a frame */
     rx[(rx_head + rx_count) % RX_RING] = f;

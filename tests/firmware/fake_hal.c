@@ -136,13 +136,7 @@ void fake_send(fake_hal *f, uint16_t id, uint8_t len, const uint8_t *data)
 
 int fake_encode(uint8_t node, proto_msg m, const int32_t *values, hal_can_frame *fr)
 {
-    proto_message pm;
-    memset(&pm, 0, sizeof pm);
-    pm.msg = m;
-    pm.node = node;
-    for (int i = 0; i < proto_table[m].nfields; ++i)
-        pm.v[i] = values[i];
-    return proto_encode(&pm, fr);
+    return proto_encode_values(m, node, values, fr);
 }
 
 void fake_send_msg(fake_hal *f, uint8_t node, proto_msg m, const int32_t *values)

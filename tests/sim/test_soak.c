@@ -341,14 +341,8 @@ static void frame(host_kind k, uint16_t id, uint8_t len, const uint8_t *d)
 
 static void msg_to(host_kind k, uint8_t node, proto_msg m, const int32_t *v)
 {
-    proto_message pm;
-    memset(&pm, 0, sizeof pm);
-    pm.msg = m;
-    pm.node = node;
-    for (int i = 0; i < proto_table[m].nfields; ++i)
-        pm.v[i] = v[i];
     hal_can_frame f;
-    assert_int_equal(proto_encode(&pm, &f), 0);
+    assert_int_equal(proto_encode_values(m, node, v, &f), 0);
     frame(k, f.id, f.len, f.data);
 }
 

@@ -190,14 +190,8 @@ static fw_controller *C;
 
 static void host_send(proto_msg m, const int32_t *v)
 {
-    proto_message pm;
-    memset(&pm, 0, sizeof pm);
-    pm.msg = m;
-    pm.node = NODE;
-    for (int i = 0; i < proto_table[m].nfields; ++i)
-        pm.v[i] = v[i];
     hal_can_frame f;
-    TT_CHECKF(proto_encode(&pm, &f) == 0, "%s not encodable\n", proto_table[m].name);
+    TT_CHECKF(proto_encode_values(m, NODE, v, &f) == 0, "%s not encodable\n", proto_table[m].name);
     TT_CHECK(ring_push(&to_ctl, &f) == 0);
 }
 

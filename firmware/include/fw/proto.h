@@ -32,6 +32,10 @@ uint16_t proto_id(proto_msg msg, uint8_t node);
  * (the frame is then left untouched). */
 int proto_encode(const proto_message *m, hal_can_frame *f);
 
+/* The same from msg's field values in table order (values holds its nfields) to node: what every
+ * sender writes. */
+int proto_encode_values(proto_msg msg, uint8_t node, const int32_t *values, hal_can_frame *f);
+
 /* Unpacks a frame travelling in direction dir.  m->node is the node of the identifier. */
 proto_error proto_decode(const hal_can_frame *f, proto_direction dir, proto_message *m);
 
