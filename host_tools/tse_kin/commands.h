@@ -7,7 +7,7 @@
 
 #include "kin_ops.h"
 #include "options.h"
-#include "params_file.h"
+#include "kin_params_file.h"
 
 /* The exit codes scripts rely on. */
 enum {

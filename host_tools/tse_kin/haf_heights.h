@@ -6,7 +6,7 @@
 #define TSE_KIN_HAF_HEIGHTS_H
 
 #include "kin_ops.h"
-#include "params_file.h"
+#include "kin_params_file.h"
 
 /* How many default heights there are. */
 enum { KIN_HAF_DEFAULT_HEIGHTS = 9 };

@@ -8,7 +8,7 @@
 #ifndef TSE_KIN_OPS_H
 #define TSE_KIN_OPS_H
 
-#include "params_file.h"
+#include "kin_params_file.h"
 #include "tse/status.h"
 
 typedef struct kin_ctx kin_ctx;

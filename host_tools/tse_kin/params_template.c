@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "fw/params.h"
-#include "params_file.h"
+#include "kin_params_file.h"
 
 #define KIN_PI 3.14159265358979323846
 

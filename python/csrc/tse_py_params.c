@@ -3,7 +3,7 @@
 
 #include <string.h>
 
-#include "params_file.h"
+#include "kin_params_file.h"
 #include "tse/status.h"
 
 int tse_py_status_count(void)

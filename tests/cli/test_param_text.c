@@ -16,7 +16,7 @@
 #include <cmocka.h>
 
 #include "param_text.h"
-#include "params_file.h"
+#include "kin_params_file.h"
 #include "scratch_dir.h"
 
 #define PI 3.14159265358979323846

@@ -1,4 +1,4 @@
-/* tse-kin's parameter file (host_tools/tse_kin/params_file.h) and its template (params_template.h):
+/* tse-kin's parameter file (host_tools/params/kin_params_file.h) and its template (params_template.h):
  * defaults, SI names and degrees, the controller's names, comments, a BOM, and an error naming the
  * file and line for every kind of mistake.  Expected values are the prototype of
  * docs/kinematics.md, the controller's table and hand conversions, not the parser's output. */
@@ -16,7 +16,7 @@
 #include <cmocka.h>
 
 #include "fw/params.h"
-#include "params_file.h"
+#include "kin_params_file.h"
 #include "params_template.h"
 
 #define PI 3.14159265358979323846

@@ -1,4 +1,4 @@
-/* tse-kin's parameter file (params_file.h) against its rules read independently: the values an
+/* tse-kin's parameter file (kin_params_file.h) against its rules read independently: the values an
  * accepted file gives, the line a refused one is refused at, and a refused file's output left as
  * it was. */
 #define _POSIX_C_SOURCE 200809L /* fmemopen */
@@ -11,13 +11,13 @@
 #include "checks.h"
 #include "fuzz_target.h"
 #include "fw/params.h"
-#include "params_file.h"
+#include "kin_params_file.h"
 #include "ref_text.h"
 
 static const double PI = 3.14159265358979323846;
 static const char NAME[] = "fuzz.params";
 
-/* The kinematic spellings params_file.h lists. */
+/* The kinematic spellings kin_params_file.h lists. */
 static const struct {
     const char *key;
     tse_param_id id;

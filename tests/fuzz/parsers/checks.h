@@ -15,7 +15,7 @@ void check_kin_stream(const char *data, size_t size, unsigned opt);
 /* traj_file.h: traj_file_read of the input as a file. */
 void check_traj_file(const char *data, size_t size, unsigned opt);
 
-/* params_file.h: tse-kin's kin_params_parse_stream of the input. */
+/* kin_params_file.h: tse-kin's kin_params_parse_stream of the input. */
 void check_kin_params(const char *data, size_t size, unsigned opt);
 
 /* param_text.h: the controller's SI parameter file, param_file_read of the input as a file. */

@@ -1,5 +1,5 @@
 /* Parameter file parser: see params_file.h for the promise. */
-#include "params_file.h"
+#include "kin_params_file.h"
 
 #include "text.h"
 
