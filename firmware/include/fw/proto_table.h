@@ -62,6 +62,8 @@
 /* Raw units per SI unit of a pose's coordinate k: x, y, z (0..2) in um, the angles in urad. */
 static inline int32_t proto_pose_units(int k)
 {
+    /* The same count today, of different units: each named for what it counts.
+     * NOLINTNEXTLINE(bugprone-branch-clone) */
     return k < 3 ? PROTO_UM_PER_M : PROTO_URAD_PER_RAD;
 }
 
