@@ -1,20 +1,33 @@
 #include "telemetry.h"
 
+/* A period's frames, as the controller sends them (firmware/src/telemetry.c): the slides, then,
+ * once homed, the pose of those slides. */
+static const proto_msg order[6] = {PM_SLIDES_A, PM_SLIDES_B, PM_SLIDES_C, PM_FK_A, PM_FK_B, PM_FK_C};
+
 int telemetry_take(telemetry *t, const proto_message *m)
 {
-    if (m->msg >= PM_SLIDES_A && m->msg <= PM_SLIDES_C) {
-        const int k = (int)m->msg - PM_SLIDES_A;
+    int k = 0;
+    while (k < 6 && order[k] != m->msg)
+        ++k;
+    if (k == 6)
+        return 0;
+    /* SLIDES_A begins a period; any other frame counts only right after its predecessor of the
+     * same period: a frame lost or a period begun before this reader started leaves nothing half
+     * of one period and half of the next (a pose beside the slides it was not solved from). */
+    if (k == 0)
+        t->have = 0;
+    else if (t->have != (1u << k) - 1u) {
+        t->have = 0;
+        return 0;
+    }
+    if (k < 3) {
         t->slides[2 * k] = (double)m->v[0] / PROTO_NM_PER_M;
         t->slides[2 * k + 1] = (double)m->v[1] / PROTO_NM_PER_M;
-        t->have |= 1u << k;
-    } else if (m->msg >= PM_FK_A && m->msg <= PM_FK_C) {
-        const int k = (int)m->msg - PM_FK_A;
-        if (k == 0)
-            t->have &= ~070u; /* a new pose begins: never mix two */
-        t->pose[2 * k] = (double)m->v[0] / proto_pose_units(2 * k);
-        t->pose[2 * k + 1] = (double)m->v[1] / proto_pose_units(2 * k + 1);
-        t->have |= 1u << (3 + k);
-        return k == 2 && telemetry_has_pose(t);
+    } else {
+        const int j = 2 * (k - 3);
+        t->pose[j] = (double)m->v[0] / proto_pose_units(j);
+        t->pose[j + 1] = (double)m->v[1] / proto_pose_units(j + 1);
     }
-    return 0;
+    t->have |= 1u << k;
+    return k == 5;
 }

@@ -8,10 +8,12 @@
 typedef struct {
     double slides[6];   /* m */
     double pose[6];     /* m, rad */
-    unsigned have;      /* bit k: SLIDES_A + k arrived; bit 3 + k: FK_A + k */
+    unsigned have;      /* bit k: SLIDES_A + k arrived; bit 3 + k: FK_A + k (of the present period) */
 } telemetry;
 
-/* Takes a frame in; returns 1 when it completed the pose (FK_C after FK_A and FK_B). */
+/* Takes a frame in; returns 1 when it completed a period's pose.  One period at a time, in the
+ * controller's order (SLIDES_A..C, then FK_A..C once homed): the slides and the pose are always
+ * of one period, and a period with a frame missing is dropped. */
 int telemetry_take(telemetry *t, const proto_message *m);
 
 static inline int telemetry_has_slides(const telemetry *t) { return (t->have & 7u) == 7u; }
