@@ -1,16 +1,16 @@
 #include "telemetry.h"
 
-/* A period's frames, as the controller sends them (firmware/src/telemetry.c): the slides, then,
- * once homed, the pose of those slides. */
-static const proto_msg order[6] = {PM_SLIDES_A, PM_SLIDES_B, PM_SLIDES_C, PM_FK_A, PM_FK_B, PM_FK_C};
+/* A period's frames, as the controller sends them (firmware/src/telemetry.c), are the table's
+ * six in a row: the slides, then, once homed, the pose of those slides. */
+_Static_assert(PM_SLIDES_B == PM_SLIDES_A + 1 && PM_SLIDES_C == PM_SLIDES_A + 2 && PM_FK_A == PM_SLIDES_A + 3 &&
+                   PM_FK_B == PM_SLIDES_A + 4 && PM_FK_C == PM_SLIDES_A + 5,
+               "a telemetry period's frames follow each other in the table");
 
 int telemetry_take(telemetry *t, const proto_message *m)
 {
-    int k = 0;
-    while (k < 6 && order[k] != m->msg)
-        ++k;
-    if (k == 6)
+    if (m->msg < PM_SLIDES_A || m->msg > PM_FK_C)
         return 0;
+    const int k = (int)m->msg - PM_SLIDES_A;
     /* SLIDES_A begins a period; any other frame counts only right after its predecessor of the
      * same period: a frame lost or a period begun before this reader started leaves nothing half
      * of one period and half of the next (a pose beside the slides it was not solved from). */

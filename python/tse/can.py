@@ -147,8 +147,6 @@ _AT_REST = ("idle", "disabled", "fault", "estop")
 _TELEMETRY_ORDER = ("SLIDES_A", "SLIDES_B", "SLIDES_C", "FK_A", "FK_B", "FK_C")  # a period's frames as sent
 _TELEMETRY_FUNCTIONS = frozenset(_P.MESSAGES[m][0] for m in _TELEMETRY_ORDER)
 _REJECT_FIELDS = tuple(f[0] for f in _P.MESSAGES["REJECT"][3])  # function, seq, reason, ...
-_POSE_UNITS = {"x": _P.UM_PER_M, "y": _P.UM_PER_M, "z": _P.UM_PER_M, "roll": _P.URAD_PER_RAD,
-               "pitch": _P.URAD_PER_RAD, "yaw": _P.URAD_PER_RAD}  # FK_A..C's fields
 
 
 def _status_of(v):
@@ -546,16 +544,12 @@ class Controller:
         elif len(tel) != k:
             tel.clear()
             return
-        if k < 3:
-            tel.append((v[f"s_a{k + 1}"] / _P.NM_PER_M, v[f"s_b{k + 1}"] / _P.NM_PER_M))
-            homed = self._status is not None and self._status.homed
-            if k == 2 and not homed:
-                self._publish(Telemetry(stamp, tel[0] + tel[1] + tel[2], None, self._state()))
-        else:
-            keys = (("x", "y"), ("z", "roll"), ("pitch", "yaw"))[k - 3]
-            tel.append(tuple(v[key] / _POSE_UNITS[key] for key in keys))
-            if k == 5:
-                self._publish(Telemetry(stamp, tel[0] + tel[1] + tel[2], tel[3] + tel[4] + tel[5], self._state()))
+        # Each frame's two fields in SI, by their scales in the table (as _pose_raw packs a pose).
+        tel.append(tuple(v[f[0]] * f[6] for f in _P.MESSAGES[name][3]))
+        if k == 2 and not (self._status is not None and self._status.homed):
+            self._publish(Telemetry(stamp, tel[0] + tel[1] + tel[2], None, self._state()))
+        elif k == 5:
+            self._publish(Telemetry(stamp, tel[0] + tel[1] + tel[2], tel[3] + tel[4] + tel[5], self._state()))
 
     def _state(self):
         return self._status.state if self._status is not None else None
