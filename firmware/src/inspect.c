@@ -57,6 +57,16 @@ void fw_inspect(const fw_controller *c, fw_inspection *out)
     out->run_ended_id = th->ended_id;
     out->run_ended_rows = th->ended_rows;
     out->run_ended_us = th->ended_us;
+    const uint32_t in = atomic_load(&c->sh.ended_in), taken = atomic_load(&c->sh.ended_out);
+    out->posted_ends = in - taken;
+    if (in != taken) {
+        const fw_traj_ended *e = &c->sh.ended[(in - 1u) % FW_ENDED_RING];
+        out->posted_how = (fw_traj_end)e->how;
+        out->posted_fault = (fw_fault)e->fault;
+        out->posted_id = e->id;
+        out->posted_rows = e->rows;
+        out->posted_us = e->us;
+    }
 
     out->stage_seq = th->stage_seq;
     out->stage_have = th->stage_have;

@@ -55,6 +55,14 @@ typedef struct {
     uint8_t run_ended_id;
     uint32_t run_ended_rows;
     uint64_t run_ended_us;
+    /* Ends the tick has posted that the thread has not yet taken (its next poll takes them first,
+     * before any frame), and the newest of them. */
+    uint64_t posted_us;
+    uint32_t posted_rows;
+    unsigned posted_ends;
+    fw_traj_end posted_how;
+    fw_fault posted_fault;
+    uint8_t posted_id;
 
     /* Staged pose and commits (the thread's) */
     uint8_t stage_seq, stage_have;

@@ -379,6 +379,12 @@ void oracle_event(rig *r)
     observe(r, false);
 }
 
+void oracle_published(rig *r)
+{
+    memcpy(o.steps_handed, r->f.steps, sizeof o.steps_handed);
+    o.handed = true;
+}
+
 void oracle_after_control(rig *r)
 {
     fw_inspection in;

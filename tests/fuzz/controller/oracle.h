@@ -27,6 +27,9 @@ void oracle_after_frame(rig *r);
 void oracle_after_poll(rig *r);
 /* An input changed, or the platform reported a fault, between two calls into the controller. */
 void oracle_event(rig *r);
+/* The platform reported a fault (fw_report_fault), which publishes the view as it stands, between
+ * two control ticks: SLIDES may say the steps as of then, until the next tick publishes. */
+void oracle_published(rig *r);
 /* A control tick. */
 void oracle_after_control(rig *r);
 /* A control-segment boundary, before its poll. */

@@ -22,7 +22,8 @@ typedef struct oracle_model {
     bool estop_read_unsure;     /* an e-stop interrupt came inside that tick: before its read or after */
     bool passive_read;          /* the CAN controller's error-passive state, likewise */
     int32_t steps_read[6];      /* the plant's steps at the last control tick (SLIDES says them) */
-    int32_t steps_handed[6];    /* ... or at a command handed over since: its hand-over publishes too */
+    int32_t steps_handed[6];    /* ... or when a command was handed over or a fault reported since:
+                                   both publish the view too */
     bool handed;
     /* ... or at any control tick since the outputs were last read: on the board's timing several
      * may run inside one poll, after its telemetry was queued (the newest is steps_read). */

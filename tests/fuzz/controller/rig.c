@@ -368,6 +368,7 @@ void rig_report_fault(rig *r, fw_fault f)
 {
     fw_report_fault(r->c, f);
     rig_input_changed(r);
+    oracle_published(r);
 }
 
 void rig_input_changed(rig *r)

@@ -16,6 +16,21 @@ void snapshot_take(const rig *r, snapshot *s)
     }
     if (!c->stopping)
         c->stop_t = c->stop_T = TSE_R(0.0);
+    /* An end the tick posted before the frame came: the frame's poll takes it before it handles
+     * the frame (firmware/src/runtime.c), so it is how the last trajectory ended as the frame finds it. */
+    if (c->posted_ends) {
+        c->run_ended = c->posted_how;
+        c->run_fault = c->posted_fault;
+        c->run_ended_id = c->posted_id;
+        c->run_ended_rows = c->posted_rows;
+        c->run_ended_us = c->posted_us;
+    }
+    c->posted_ends = 0;
+    c->posted_how = FW_TRAJ_END_NONE;
+    c->posted_fault = FW_FAULT_NONE;
+    c->posted_id = 0;
+    c->posted_rows = 0;
+    c->posted_us = 0;
     if (c->src != FW_SRC_TRAJ) {
         c->traj_end_us = 0;
         c->traj_closed = false;

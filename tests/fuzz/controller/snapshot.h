@@ -7,7 +7,8 @@
  * driver timing programmed and the flash, the staged pose, the last accepted commit, the motion
  * (source, the running move's target and timing, a blended successor, the stop ramp), the
  * trajectory queue (depth, end time, open or closed while a trajectory runs) and its life (open,
- * clocked, identity, rows, how the last one ended), homing's phase, the
+ * clocked, identity, rows, how the last one ended: with an end the tick posted before the frame
+ * taken as the frame's poll takes it first), homing's phase, the
  * step generator's timing, queue and positions, the setpoint, the watchdog's last heartbeat.
  * Not compared: the STATUS counter and the times of the next STATUS and telemetry (periodic output:
  * the poll after the frame may legitimately send them), and the bus-off and overrun counts seen
