@@ -28,6 +28,7 @@
 #include "fw/proto.h"
 #include "fw/stepgen.h"
 #include "fw/traj.h"
+#include "fw/traj_stop.h"
 #include "fw/types.h"
 #include "hal/can.h"
 #include "tse/geometry.h"
@@ -82,6 +83,7 @@ typedef struct {
     tse_real tau;           /* path time of the running source [s] */
     bool stopping;
     tse_real stop_t, stop_T;/* time into the stop ramp, its length */
+    fw_traj_stop traj_stop; /* a trajectory's ramp as it runs (its law: fw/traj_stop.h) */
     uint32_t segments_run;
     fw_homing home;
 

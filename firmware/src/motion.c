@@ -9,10 +9,8 @@
 /* Shortest controlled stop [s]. */
 #define MIN_STOP_TIME TSE_R(0.02)
 
-/* Length of a stop ramp of the path's time rate from 1 to 0 (cycloidal): a slide moving at v
- * brakes at most 2 v / T.  `share` is the part of the acceleration limit the braking may take;
- * the path's own acceleration has the rest. */
-static tse_real stop_time(const fw_controller *c, tse_real share)
+/* The fastest slide's speed over the last control period. */
+static tse_real present_speed(const fw_controller *c)
 {
     const fw_tick *t = &c->tick;
     tse_real v = TSE_R(0.0);
@@ -21,23 +19,19 @@ static tse_real stop_time(const fw_controller *c, tse_real share)
         if (vk > v)
             v = vk;
     }
-    tse_real T = TSE_R(2.0) * v / (share * t->lim.slide_amax);
-    return T < MIN_STOP_TIME ? MIN_STOP_TIME : T;
+    return v;
 }
 
-/* A stop ramp that holds for the whole path, whatever its own acceleration: the ramp scales the
+/* The stop ramp of a move or of homing's joint move (cycloidal: a slide moving at v brakes at most
+ * 2 v / T), one that holds for the whole path, whatever its own acceleration: the ramp scales the
  * path's time rate r from 1 to 0 (advance), so a slide's acceleration is r^2 times the path's
  * own (at most `along` of the limit) plus r' times the path's slide speed.  That speed goes on
  * growing while the ramp stretches time along an accelerating path, so a ramp sized from the
- * present speed (stop_time) can brake beyond the limit; sized from the fastest the path's slides
+ * present speed can brake beyond the limit; sized from the fastest the path's slides
  * go (v_peak), with `share` of the limit for braking, the sum is at most the peak over the ramp's
  * x in [0, 1] of along r(x)^2 + share (1 - cos 2 pi x) / 2: for along 0.95 and share 0.4 (a
  * move, planned within 95 % of the limits), 0.998 of the limit; for 0.9 and 0.45 (homing's
  * joint move), 0.972. */
-/* The share of slide_amax a trajectory's stop brakes with (its path is validated up to the limit
- * itself: along 1, below). */
-#define TRAJ_STOP_SHARE TSE_R(0.45)
-
 static tse_real path_stop_time(const fw_controller *c, tse_real v_peak, tse_real share)
 {
     const tse_real T = TSE_R(2.0) * v_peak / (share * c->tick.lim.slide_amax);
@@ -61,16 +55,19 @@ static tse_real traj_v_peak(const fw_controller *c, tse_real span)
     return v;
 }
 
-/* A trajectory's stop ramp, sized as a move's (path_stop_time) from the fastest its slides go over
- * the path time the ramp covers (half its length, and a stride more), not from the present speed:
- * a path still accelerating goes on speeding up along the ramp (issue 24: braking at 1.3 times
- * slide_amax).  The ramp's length and the span it covers grow together; a few rounds settle them. */
-static tse_real traj_stop_time(const fw_controller *c, tse_real share)
+/* A trajectory's stop ramp (fw/traj_stop.h), sized from the fastest its slides go over the path
+ * time the ramp covers (and a stride more), not from the present speed: a path still accelerating
+ * goes on speeding up along the ramp (issue 24: braking at 1.3 times slide_amax).  The ramp's
+ * length and the span it covers grow together; a few rounds settle them. */
+static tse_real traj_stop_time(const fw_controller *c)
 {
+    const fw_tick *t = &c->tick;
     const tse_real stride = (tse_real)FW_ACC_STRIDE / (tse_real)c->cfg.segment_hz;
-    tse_real T = stop_time(c, share);
+    const tse_real v = present_speed(c);
+    tse_real T = fw_traj_stop_time(v, t->lim.slide_amax, MIN_STOP_TIME);
     for (int round = 0; round < 8; ++round) {
-        const tse_real longer = path_stop_time(c, traj_v_peak(c, TSE_R(0.5) * T + stride), share);
+        const tse_real v_peak = traj_v_peak(c, fw_traj_stop_reach(T) + stride);
+        const tse_real longer = fw_traj_stop_time(v_peak > v ? v_peak : v, t->lim.slide_amax, MIN_STOP_TIME);
         if (!(longer > T))
             break;
         T = longer;
@@ -173,8 +170,10 @@ void fw_motion_stop(fw_controller *c)
         t->stop_T = path_stop_time(c, joint_v_peak(c), TSE_R(0.45));
     else if (t->src == FW_SRC_MOVE)
         t->stop_T = path_stop_time(c, t->move.v_peak + (blending ? t->next.v_peak : TSE_R(0.0)), TSE_R(0.4));
-    else
-        t->stop_T = traj_stop_time(c, TRAJ_STOP_SHARE);
+    else {
+        t->stop_T = traj_stop_time(c);
+        fw_traj_stop_begin(&t->traj_stop, t->stop_T, TSE_R(1.0) / (tse_real)c->cfg.segment_hz);
+    }
 }
 
 /* Path time of the next segment: on the planner's grid exactly while running, so execution
@@ -188,7 +187,9 @@ static tse_real advance(fw_controller *c, tse_real end, bool *last)
     if (t->stopping) {
         t->stop_t += dt;
         tse_real rate = TSE_R(0.0);
-        if (t->stop_t < t->stop_T) {
+        if (t->stop_t < t->stop_T && t->src == FW_SRC_TRAJ) {
+            rate = fw_traj_stop_next(&t->traj_stop);
+        } else if (t->stop_t < t->stop_T) {
             const tse_real x = t->stop_t / t->stop_T;
             rate = TSE_R(1.0) - (x - tse_sin(TSE_R(2.0) * TSE_PI * x) / (TSE_R(2.0) * TSE_PI));
         } else {
@@ -241,7 +242,7 @@ static void run_source(fw_controller *c)
         /* The host is falling behind: once less trajectory is queued than a stop needs, stop
          * along it while there is room, and latch the underrun. */
         const tse_real left = (tse_real)t->traj.end_us * TSE_R(1e-6) - t->tau;
-        if (left <= TSE_R(0.5) * traj_stop_time(c, TRAJ_STOP_SHARE) + TSE_R(2.0) / (tse_real)c->cfg.segment_hz) {
+        if (left <= fw_traj_stop_reach(traj_stop_time(c)) + TSE_R(2.0) / (tse_real)c->cfg.segment_hz) {
             t->pending_fault = FW_FAULT_UNDERRUN;
             fw_motion_stop(c);
         }

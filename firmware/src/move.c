@@ -5,8 +5,9 @@
 #include "fw/validate.h"
 #include "fw/work.h"
 
-/* Planning keeps this fraction of every slide limit in hand for the step quantisation. */
-#define LIMIT_MARGIN TSE_R(0.95)
+/* Planning keeps this fraction of every slide limit in hand: the acceleration's for a stop
+ * (fw/limits.h), both for the step quantisation. */
+#define LIMIT_MARGIN FW_PATH_MARGIN
 #define MAX_STRETCH_ROUNDS 6
 
 /* The slerp turns the plate about one world axis at a constant rate: the axis of q1 q0^-1 (q1 on

@@ -196,6 +196,10 @@ fw_param_fault fw_params_judge(const fw_param_set *s)
         return fault(FP_S_MAX, FW_RULE_STROKE_ORDER);
     if (bad != TSE_PARAM_OK)
         return fault((int)kin_param[bad], FW_RULE_GEOMETRY);
+    /* r_top * steps_per_m >= 1e6 / FW_PLATE_STEP_URAD, in integers (the board has no double):
+     * k4 [ppm] x L [um] x steps_per_m >= 1e18 / urad, each factor within its range. */
+    if ((int64_t)s->v[FP_K4] * s->v[FP_L] < INT64_C(1000000000000000000) / FW_PLATE_STEP_URAD / s->v[FP_STEPS_PER_M])
+        return fault(FP_K4, FW_RULE_PLATE_STEP);
     const fw_param_fault sw = check_switches(s, &p);
     if (sw.rule != FW_RULE_NONE)
         return sw;

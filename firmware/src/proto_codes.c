@@ -53,6 +53,9 @@ const proto_code proto_param_rules[] = {
     {FW_RULE_HOMING_PATH, "homing_path",
      "homing's final move, straight in slide space from the homing switches (home_sw_1..6) to the home "
      "pose, must pass valid poses only (within the workspace and both margins)"},
+    {FW_RULE_PLATE_STEP, "plate_step",
+     "the top plate (r_top = k4 x L) must be wide enough that one step at a ball joint turns it by at "
+     "most 1 mrad: k4 x L x steps_per_m at least 1000"},
     {0, 0, 0},
 };
 

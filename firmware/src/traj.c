@@ -26,7 +26,8 @@ void fw_traj_check_start(fw_traj_check *t, const fw_limits *lim, const tse_real 
 {
     t->closed = false;
     make_point(&t->tail, pose, 0u, false, 0);
-    fw_slide_check_start(&t->chk, lim->slide_vmax, lim->slide_amax, lim->segment_hz, q);
+    /* Speed up to the limit (a stop slows down), acceleration within the path's share of it. */
+    fw_slide_check_start(&t->chk, lim->slide_vmax, FW_PATH_MARGIN * lim->slide_amax, lim->segment_hz, q);
     t->next_segment = 1;
 }
 
@@ -113,7 +114,9 @@ int fw_traj_check_point(const fw_traj_check *t, const tse_geometry *g, const fw_
     if (last)
         fw_slide_check_finish(chk);
     if (!fw_slide_check_ok(chk)) {
-        fw_plan_timing(res, fw_slide_check_worst(chk), TSE_R(1.0), lim);
+        /* Said against slide_amax itself, as for moves. */
+        const fw_slide_worst w = fw_slide_check_worst(chk);
+        fw_plan_timing(res, w, w.accel ? FW_PATH_MARGIN : TSE_R(1.0), lim);
         return -1;
     }
     after->next_segment = k;

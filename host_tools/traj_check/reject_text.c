@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "fw/params.h"
+#include "fw/path.h"
 #include "fw/reject.h"
 
 const char *reject_slide_name(int slide)
@@ -134,11 +135,12 @@ const char *reject_text(const proto_message *r, char *buf, size_t cap)
         const char *words = proto_code_words(proto_slide_limits, limit);
         if (limit == FW_LIMIT_SLIDE_AMAX)
             snprintf(buf, cap,
-                     "rejected: timing: %s: slide %s (scissor %d) would need %.2f times %s: the speed changes "
-                     "too abruptly here. Between points the plate moves at constant speed, so every change of "
-                     "speed at a point must be small: ease in and out, sample a smooth path (10-50 ms apart), "
-                     "and start at rest where the plate is",
-                     cmd, reject_slide_name(slide), scissor, ratio, words);
+                     "rejected: timing: %s: slide %s (scissor %d) would need %.2f times %s, of which a path "
+                     "may use %.2f (the rest is kept for braking in a stop): the speed changes too abruptly "
+                     "here. Between points the plate moves at constant speed, so every change of speed at a "
+                     "point must be small: ease in and out, sample a smooth path (10-50 ms apart), and start "
+                     "at rest where the plate is",
+                     cmd, reject_slide_name(slide), scissor, ratio, words, (double)FW_PATH_MARGIN);
         else if (words)
             snprintf(buf, cap,
                      "rejected: timing: %s: slide %s (scissor %d) would need %.2f times %s: give this point at "

@@ -10,7 +10,7 @@ int plan_measure(const plan *p, plan_stats *st)
     st->v_peak = st->a_peak = 0.0;
     st->rows_mid = st->rows_near = 0;
     st->v_limit = (double)p->lim.slide_vmax;
-    st->a_limit = (double)p->lim.slide_amax;
+    st->a_limit = (double)(FW_PATH_MARGIN * p->lim.slide_amax); /* what rows may use (fw/path.h) */
     if (traj_checker_start(&c, &p->set, p->wp[0].pose, p->q0) != 0)
         return -1;
     /* The motion's time: from the row holding the start to the last. */

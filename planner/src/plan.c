@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "fw/reject.h"
+#include "fw/traj_stop.h"
 #include "plan_internal.h"
 
 void plan_options_default(plan_options *o)
@@ -123,7 +124,7 @@ double plan_row_spacing_min(const fw_param_set *s)
     fw_limits lim;
     if (fw_limits_from_params(s, FW_STEP_HZ, FW_SEGMENT_HZ, &g, &lim) != 0)
         return PLAN_ROW_MIN_US * 1e-6;
-    const double need = (double)lim.slide_vmax / (PLAN_STOP_SHARE * (double)lim.slide_amax) +
+    const double need = (double)fw_traj_stop_reach(fw_traj_stop_time(lim.slide_vmax, lim.slide_amax, 0.0)) +
                          2.0 / (double)lim.segment_hz + PLAN_QUEUE_MARGIN_S;
     return fmax(ceil(need / PLAN_QUEUED_ROWS * 1e6) * 1e-6, PLAN_ROW_MIN_US * 1e-6);
 }
@@ -263,7 +264,7 @@ plan *plan_make(void *mem, size_t bytes, const fw_param_set *s, const plan_waypo
     const double stride = (double)FW_ACC_STRIDE / (double)lim.segment_hz;
     p->vlim = (double)lim.slide_vmax * o->v_margin;
     p->row_f = fmin(1.0, stride / o->period);
-    p->alim = (double)lim.slide_amax * o->a_margin * p->row_f;
+    p->alim = (double)(FW_PATH_MARGIN * lim.slide_amax) * o->a_margin * p->row_f; /* what rows may use */
     p->period_us = llround(o->period * 1e6);
     p->hold_us = s->v[FP_TRAJ_LEAD] > PLAN_ROW_MIN_US ? s->v[FP_TRAJ_LEAD] : PLAN_ROW_MIN_US;
     p->min_us = llround(plan_row_spacing_min(s) * 1e6);

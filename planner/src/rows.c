@@ -11,7 +11,7 @@
  * the straight rows cut inside the curve by up to a P'^2 / 8, and it sees up to 12 % more (rows
  * 7 ms apart against its 10 ms).  So there a stretch takes more rows (up to twice as many) until
  * their spacing is one the stride sees within half a per cent.  No two rows are closer than the
- * controller's queue allows (plan.h, PLAN_STOP_SHARE): a waypoint passed sooner after the one before
+ * controller's queue allows (plan.h, plan_row_spacing_min): a waypoint passed sooner after the one before
  * (or before the last) has no row of its own.  Times in
  * whole microseconds, as the wire carries them. */
 #include <math.h>

@@ -74,6 +74,7 @@ CODES = {
         11: ("not_at_rest", "the step generator was still running: parameters change only at rest (try again)"),
         12: ("home_margins", "the home pose must pass its own margins (mu_min, nu_min) and stroke, or every move from it is refused"),
         13: ("homing_path", "homing's final move, straight in slide space from the homing switches (home_sw_1..6) to the home pose, must pass valid poses only (within the workspace and both margins)"),
+        14: ("plate_step", "the top plate (r_top = k4 x L) must be wide enough that one step at a ball joint turns it by at most 1 mrad: k4 x L x steps_per_m at least 1000"),
     },
 }
 

@@ -104,6 +104,8 @@ static void param_set_rule_words(void **state)
                                  "from it is refused",
         [FW_RULE_HOMING_PATH] = "homing's final move, straight in slide space from the homing switches (home_sw_1..6) "
                                 "to the home pose, must pass valid poses only (within the workspace and both margins)",
+        [FW_RULE_PLATE_STEP] = "the top plate (r_top = k4 x L) must be wide enough that one step at a ball joint "
+                               "turns it by at most 1 mrad: k4 x L x steps_per_m at least 1000",
     };
     assert_int_equal(sizeof want / sizeof want[0], FW_RULE_COUNT);
     const int set = proto_table[PM_PARAM_SET].function;
@@ -115,7 +117,7 @@ static void param_set_rule_words(void **state)
     }
     proto_message m = reject(set, FW_REASON_PARAM_SET, 0, 0, FP_DIR_SETUP_NS, FW_RULE_COUNT);
     assert_string_equal(reject_text(&m, b, sizeof b),
-                        "rejected: param_set: dir_setup_ns: the set breaks a rule this tsectl does not know (code 14; "
+                        "rejected: param_set: dir_setup_ns: the set breaks a rule this tsectl does not know (code 15; "
                         "a firmware newer than tsectl?); nothing was changed");
 }
 
@@ -138,7 +140,8 @@ static void timing_limit_words(void **state)
                         "shows it): give this point at least 35% more time from the previous one");
     m = reject(traj, FW_REASON_TIMING, 3, 0, 6 + 16, 2000);
     reject_text(&m, b, sizeof b);
-    has(b, "slide B3 (scissor 3) would need 2.00 times its acceleration limit (slide_amax): the speed changes");
+    has(b, "slide B3 (scissor 3) would need 2.00 times its acceleration limit (slide_amax), of which a path "
+           "may use 0.95 (the rest is kept for braking in a stop): the speed changes");
     m = reject(traj, FW_REASON_TIMING, 1, 0, 1 + 48, 1200);
     assert_string_equal(reject_text(&m, b, sizeof b),
                         "rejected: timing: TRAJ_COMMIT: slide A1 (scissor 1) would need 1.20 times a limit this "

@@ -155,6 +155,13 @@ static void test_judge_rules(void **state)
         /* Issue 24: from 12.8 % of the way from these switches (the others at 0.2 m) to home, nu
          * falls to 0.0015, then the slides have no pose. */
         {FP_HOME_SW_1, -1, 475000, 0, FW_RULE_HOMING_PATH, FP_HOME_SW_1},
+        /* A plate one step turns by more than 1 mrad (the controller fuzzing's k4 = 1 ppm, a plate of
+         * 1.7 um): r_top x steps_per_m = k4 1e-6 x 1.727 m x 1,280,000 / m at least 1000 is k4 at
+         * least 452.4 ppm; with the default plate, steps_per_m at least 4,921.7. */
+        {FP_K4, -1, 452, 0, FW_RULE_PLATE_STEP, FP_K4},
+        {FP_K4, -1, 453, 0, FW_RULE_NONE, -1},
+        {FP_STEPS_PER_M, -1, 4921, 0, FW_RULE_PLATE_STEP, FP_K4},
+        {FP_STEPS_PER_M, -1, 4922, 0, FW_RULE_NONE, -1},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         fw_param_set s;

@@ -70,7 +70,7 @@ static double axis_slide(double z)
 /* The acceleration the rows `period` apart may have, as the validator's stride sees them. */
 static double a_rows(double period)
 {
-    return set_for(period).v[FP_SLIDE_AMAX] * 1e-6 * fmin(1.0, 0.01 / period);
+    return (double)FW_PATH_MARGIN * set_for(period).v[FP_SLIDE_AMAX] * 1e-6 * fmin(1.0, 0.01 / period);
 }
 
 static double bang_bang(double ds, double a)

@@ -28,11 +28,12 @@ static sim_rig R;
 #define ROWS 9
 #define DT_MS 1000
 
-/* The plate's x offset at row i (1..ROWS): the speed steps 0, 8, 16, ... 40, ... 8 mm/s row by row
- * (changes of 8 mm/s at a point, inside slide_amax x 10 ms), 0.2 m in all, at rest at the end. */
+/* The plate's x offset at row i (1..ROWS): the speed steps 0, 7, 14, ... 35, ... 7 mm/s row by row
+ * (changes of 7 mm/s at a point, inside the rows' share of slide_amax x 10 ms), 0.175 m in all, at
+ * rest at the end. */
 static double row_x(int i)
 {
-    static const double v[ROWS] = {0.008, 0.016, 0.024, 0.032, 0.040, 0.032, 0.024, 0.016, 0.008};
+    static const double v[ROWS] = {0.007, 0.014, 0.021, 0.028, 0.035, 0.028, 0.021, 0.014, 0.007};
     double x = 0.0;
     for (int k = 0; k < i && k < ROWS; ++k)
         x += v[k] * DT_MS * 1e-3;

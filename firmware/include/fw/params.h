@@ -92,8 +92,14 @@ typedef enum {
     FW_RULE_NOT_AT_REST = 11,   /* the step generator was still running */
     FW_RULE_HOME_MARGINS = 12,  /* the home pose passes its own margins (mu_min, nu_min, stroke) */
     FW_RULE_HOMING_PATH = 13,   /* homing's final move from the switches stays at valid poses */
+    FW_RULE_PLATE_STEP = 14,    /* a step at a ball joint turns the plate FW_PLATE_STEP_URAD at most */
     FW_RULE_COUNT
 } fw_param_rule;
+
+/* The most one step at a ball joint may turn the plate [urad]: r_top * steps_per_m >= 1e6 / this.
+ * A plate of micrometres (k4 = 1 ppm is in its range) has an orientation no step count can hold or
+ * report: its forward kinematics is lost in the steps' rounding. */
+#define FW_PLATE_STEP_URAD 1000
 
 /* Why a set is refused: the rule, and the parameter the check blames (-1 for none: the set is
  * valid, or the rule is not about one parameter). */

@@ -30,6 +30,12 @@ typedef struct {
     fw_slide_limit vmax_by;                      /* what sets slide_vmax (fw_limits_from_params) */
 } fw_limits;
 
+/* The share of slide_amax a path may use: moves are planned, trajectory rows validated, within it.
+ * The rest keeps the rounding to whole steps and a stop's braking within the limit: a stop ramp
+ * slows the path's clock, and its braking adds to the path's own acceleration (firmware/src/motion.c
+ * sizes the ramp so that the two together stay below slide_amax). */
+#define FW_PATH_MARGIN TSE_R(0.95)
+
 typedef struct {
     tse_real from[6], to[6];
     tse_real dp[3];     /* displacement of the plate centre */

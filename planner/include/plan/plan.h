@@ -59,13 +59,12 @@
 /* The wire's least dt between rows [us]. */
 #define PLAN_ROW_MIN_US 1000
 /* The controller stops a trajectory whose queue holds less path than a stop from the speeds queued
- * needs (an underrun: docs/controller.md, "Faults" and "Stops"): a ramp that sheds the fastest
- * slide speed v within PLAN_STOP_SHARE of slide_amax, of which it wants half, v / (share amax), and
- * two control periods queued.  The host keeps its queue of FW_TRAJ_CAPACITY rows full less the
- * rows in flight, so rows closer than (v / (share amax) + margin) / PLAN_QUEUED_ROWS at the speed
- * limit would leave too little path queued: the planner's rows are never closer (a waypoint passed
- * sooner after the previous row has no row of its own), and a --period below that is refused. */
-#define PLAN_STOP_SHARE 0.45
+ * needs (an underrun: docs/controller.md, "Faults" and "Stops"): the path its stop ramp covers from
+ * the fastest slide speed v (fw/traj_stop.h: 2.27 v / slide_amax), and two control periods.  The
+ * host keeps its queue of FW_TRAJ_CAPACITY rows full less the rows in flight, so rows closer than
+ * (that path + margin) / PLAN_QUEUED_ROWS at the speed limit would leave too little path queued:
+ * the planner's rows are never closer (a waypoint passed sooner after the previous row has no row
+ * of its own), and a --period below that is refused. */
 #define PLAN_QUEUED_ROWS (FW_TRAJ_CAPACITY - PROTO_TRAJ_WINDOW)
 #define PLAN_QUEUE_MARGIN_S 0.012
 
@@ -154,7 +153,7 @@ int plan_retries(const plan *p);
 int plan_row_waypoint(const plan *p, double t);
 /* The first row's time [s]: where the motion starts. */
 double plan_hold(const plan *p);
-/* The rows' least spacing [s] (the controller's queue, PLAN_STOP_SHARE). */
+/* The rows' least spacing [s] (the controller's queue and its stop ramp). */
 double plan_row_spacing_min(const fw_param_set *s);
 /* The slides at the first waypoint (where the validator starts). */
 void plan_start_slides(const plan *p, double q[6]);
