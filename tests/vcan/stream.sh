@@ -28,6 +28,10 @@ tsectl --iface vcan0 --node 1 heartbeat &
 hb=$!
 $T enable >/dev/null 2>&1 && $T home --wait >out.txt 2>&1
 check "homed" "[ $? -eq 0 ]"
+# The simulator says where it came to rest as it sees the plate stop, which may be after tsectl saw
+# STATUS say idle (its own thread, at nice 10 on a busy machine): wait for the line.
+i=0
+while [ $i -lt 40 ] && ! grep -q 'at rest: plate' sim.log; do sleep 0.25; i=$((i + 1)); done
 rest=$(grep 'at rest: plate' sim.log | tail -1 | awk '{ print $5, $6, $7, $9, $10, $11 }')
 python3 stream_files.py $rest
 check "the files are laid out from the rest pose ($rest)" "[ -s circle.csv ] && [ -s fast.csv ]"
