@@ -138,7 +138,7 @@ static void start_joint_move(fw_controller *c)
             longest = d;
     }
     const tse_real n = longest > TSE_R(0.0) ? longest : TSE_R(1.0);
-    const tse_real jerk = c->tick.lim.slide_amax * c->tick.lim.plate_jmax / c->tick.lim.plate_amax;
+    const tse_real jerk = fw_slide_jmax(&c->tick.lim);
     fw_profile_plan(&c->tick.joint.prof, longest > TSE_R(0.0) ? TSE_R(1.0) : TSE_R(0.0),
                     TSE_R(0.9) * c->tick.lim.slide_vmax / n, TSE_R(0.9) * c->tick.lim.slide_amax / n, jerk / n,
                     TSE_R(0.0));

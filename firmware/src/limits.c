@@ -117,3 +117,8 @@ int fw_limits_from_params(const fw_param_set *s, uint32_t step_hz, uint32_t segm
     lim->segment_hz = (tse_real)segment_hz;
     return 0;
 }
+
+tse_real fw_slide_jmax(const fw_limits *lim)
+{
+    return lim->slide_amax * lim->plate_jmax / lim->plate_amax;
+}

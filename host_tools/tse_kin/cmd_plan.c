@@ -10,7 +10,7 @@
 #include "waypoint_file.h"
 
 const char cmd_plan_help[] =
-    "usage: tse-kin plan [--params FILE] [--blend M] [--period S] WAYPOINTS.csv\n"
+    "usage: tse-kin plan [--params FILE] [--blend M] [--period S] [--jerk J|controller] WAYPOINTS.csv\n"
     "\n"
     "Plans a path through the waypoints and the fastest time law along it that the controller's\n"
     "slides allow, and writes it as a trajectory file (t,x,y,z,roll,pitch,yaw; tsectl trajectory\n"
@@ -28,6 +28,12 @@ const char cmd_plan_help[] =
     "acceleration limit (0.95 of slide_amax, as its validator measures rows: more than 0.01 s apart,\n"
     "each row may change a slide's speed by 0.95 slide_amax x 0.01 s). The rows are checked by the\n"
     "controller's own validator before anything is written.\n"
+    "\n"
+    "The controller bounds no trajectory's jerk (its rows are straight: each changes the speed at once,\n"
+    "and the validator judges acceleration over 0.01 s). --jerk J holds each slide's jerk along the\n"
+    "planned motion to J m/s^3 as well ('controller': the limit the controller's own moves keep to,\n"
+    "slide_amax x plate_jmax / plate_amax, 10 m/s^3 with the defaults): the time law is smoothed over a\n"
+    "window of slide_amax / J or a little more, and the motion takes about that much longer.\n"
     "\n"
     "WAYPOINTS.csv: rows x,y,z,roll,pitch,yaw (metres, radians); '#' comments and blank lines\n"
     "skipped. A header line may name the columns in any order and add t (the time the waypoint is\n"
@@ -60,6 +66,7 @@ int cmd_plan(const kin_run *run)
     o.blend = run->opt->blend;
     if (run->opt->period > 0.0)
         o.period = run->opt->period;
+    o.jmax = run->opt->jerk < 0.0 ? plan_slide_jmax(&set) : run->opt->jerk;
     plan_waypoint *wp = malloc((size_t)n * sizeof *wp);
     plan_made made = {NULL, NULL};
     if (!wp) {
@@ -79,6 +86,8 @@ int cmd_plan(const kin_run *run)
                plan_row_count(made.p), o.period);
         if (o.blend > 0.0)
             printf(", corners cut by at most %g m", o.blend);
+        if (o.jmax > 0.0)
+            printf(", slides' jerk within %g m/s^3", o.jmax);
         printf("; the validator refused %d time%s (a stretch slowed each time)\n", plan_retries(made.p),
                plan_retries(made.p) == 1 ? "" : "s");
         plan_print_stats(stdout, "# ", &st);

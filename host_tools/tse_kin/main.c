@@ -48,7 +48,8 @@ static const command commands[] = {
     {"margins", "poses -> status,scissor,mu1,mu2,mu3,nu (where singularities lie)",
      KIN_OPT_PARAMS | KIN_OPT_PRECISION, 1, cmd_margins, cmd_margins_help, NULL},
     {"plan", "WAYPOINTS.csv -> a trajectory the controller accepts, near the fastest",
-     KIN_OPT_ARGS | KIN_OPT_PARAMS | KIN_OPT_BLEND | KIN_OPT_PERIOD, CONTROLLER_SET, cmd_plan, cmd_plan_help,
+     KIN_OPT_ARGS | KIN_OPT_PARAMS | KIN_OPT_BLEND | KIN_OPT_PERIOD | KIN_OPT_JERK, CONTROLLER_SET, cmd_plan,
+     cmd_plan_help,
      cmd_one_file_check},
     {"check", "TRAJ.csv judged by the controller's validator, offline", KIN_OPT_ARGS | KIN_OPT_PARAMS, CONTROLLER_SET,
      cmd_check, cmd_check_help, cmd_one_file_check},
@@ -78,6 +79,7 @@ static void print_usage(FILE *f)
           "  --jobs J                   sweep threads (default: the number of cores)\n"
           "  --blend M                  plan: cut corners by at most M metres (default 0: through each)\n"
           "  --period S                 plan: rows' spacing in seconds (default 0.02)\n"
+          "  --jerk J|controller        plan: hold the slides' jerk to J m/s^3 (default: no limit)\n"
           "  --help                     usage, of the tool or of a command\n"
           "\n" KIN_HELP_ROWS "\n" KIN_HELP_PARAMS "\n" KIN_HELP_EXIT,
           f);

@@ -37,6 +37,7 @@ static const option_def defs[] = {
     {"--jobs", KIN_OPT_JOBS, 1},
     {"--blend", KIN_OPT_BLEND, 1},
     {"--period", KIN_OPT_PERIOD, 1},
+    {"--jerk", KIN_OPT_JERK, 1},
 };
 
 /* A whole decimal number in [lo, hi], nothing around it. */
@@ -157,6 +158,19 @@ static int apply(unsigned bit, const char *name, const char *val, kin_options *o
         if (text_number(val, &o->period) != 0 || !(o->period >= KIN_PERIOD_MIN && o->period <= KIN_PERIOD_MAX)) {
             snprintf(err, errlen, "%s takes the rows' spacing in seconds from %g to %g; got '%s'", name, KIN_PERIOD_MIN,
                      KIN_PERIOD_MAX, val);
+            return -1;
+        }
+        return 0;
+    case KIN_OPT_JERK:
+        if (strcmp(val, "controller") == 0) {
+            o->jerk = -1.0;
+            return 0;
+        }
+        if (text_number(val, &o->jerk) != 0 || !(o->jerk > 0.0 && o->jerk <= KIN_JERK_MAX)) {
+            snprintf(err, errlen,
+                     "%s takes the slides' jerk limit in m/s^3 above 0 and up to %g, or 'controller' for the "
+                     "controller's own; got '%s'",
+                     name, KIN_JERK_MAX, val);
             return -1;
         }
         return 0;

@@ -21,7 +21,8 @@ enum {
     KIN_OPT_JOBS = 1u << 7,        /* --jobs J */
     KIN_OPT_ARGS = 1u << 8,        /* positional arguments: anything not starting with "--" */
     KIN_OPT_BLEND = 1u << 9,       /* --blend M */
-    KIN_OPT_PERIOD = 1u << 10      /* --period S */
+    KIN_OPT_PERIOD = 1u << 10,     /* --period S */
+    KIN_OPT_JERK = 1u << 11        /* --jerk J|controller */
 };
 
 #define KIN_MAX_Z 256
@@ -41,6 +42,8 @@ enum {
 #define KIN_BLEND_MAX 1.0
 #define KIN_PERIOD_MIN 0.001
 #define KIN_PERIOD_MAX 1.0
+/* --jerk's largest number [m/s^3]: beyond it the smoothing window is below a control period. */
+#define KIN_JERK_MAX 1e6
 
 typedef struct {
     const char *params_path;  /* NULL: the prototype's parameters */
@@ -55,6 +58,7 @@ typedef struct {
     int jobs;                 /* --jobs; 0: the number of cores */
     double blend;             /* --blend [m]; 0: none */
     double period;            /* --period [s]; 0: the command's default */
+    double jerk;              /* --jerk [m/s^3]; 0: none; -1: the controller's own (plan_slide_jmax) */
     const char *args[KIN_MAX_ARGS]; /* positional arguments, in order */
     int n_args;
 } kin_options;

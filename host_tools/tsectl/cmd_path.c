@@ -34,6 +34,15 @@ static int parse(int argc, char **argv, path_args *a)
         double *value = !strcmp(s, "--blend") ? &a->o.blend : !strcmp(s, "--period") ? &a->o.period : NULL;
         if (!strcmp(s, "--dry-run")) {
             a->dry_run = true;
+        } else if (!strcmp(s, "--jerk")) {
+            if (i + 1 >= argc)
+                return usage_error("path", "a value is missing after", s);
+            if (!strcmp(argv[i + 1], "controller"))
+                a->o.jmax = -1.0; /* the controller's own, once its parameters are read */
+            else if (text_number(argv[i + 1], &a->o.jmax) != 0 || !(a->o.jmax > 0.0 && a->o.jmax <= 1e6))
+                return usage_error("path", "--jerk takes the slides' jerk limit in m/s^3 above 0 and up to 1e6, or "
+                                           "'controller'", argv[i + 1]);
+            ++i;
         } else if (!strcmp(s, "--plot")) {
             if (i + 1 >= argc || !argv[i + 1][0])
                 return usage_error("path", "--plot needs a FILE.png", NULL);
@@ -129,6 +138,8 @@ int run_path(tlink *l, int argc, char **argv)
         const int skip = from_here(rows, n, s.tel.pose, wp);
         const plan_waypoint *first = wp + skip;
         const int count = n + 1 - skip;
+        if (a.o.jmax < 0.0)
+            a.o.jmax = plan_slide_jmax(&s.set);
         if (plan_text_make(&s.set, first, count, &a.o, a.path, &m, err, sizeof err) != 0) {
             ctl_error("%s; nothing was sent", err);
             rc = EXIT_REJECTED;

@@ -62,7 +62,9 @@ static const char *const path_help =
     "empty where free) and v (the plate's speed from there on at most, m/s).  A bad row exits 2\n"
     "naming FILE:LINE.  The path goes from the plate's pose to the first waypoint (unless it is\n"
     "there), then through every waypoint on a smooth curve, or with --blend M along straight pieces\n"
-    "whose corners it cuts by at most M metres; rows are --period apart (default 0.02 s).  A\n"
+    "whose corners it cuts by at most M metres; rows are --period apart (default 0.02 s).  --jerk J\n"
+    "holds each slide's jerk to J m/s^3 as well ('controller': the limit its own moves keep to; the\n"
+    "controller bounds no trajectory's jerk, so there is none by default; tse-kin plan --help).  A\n"
     "waypoint outside the workspace, or a path leaving it between two, exits 3 naming it, and\n"
     "nothing is sent.  --dry-run prints the plan's duration and how near each limit it runs, then\n"
     "its rows (a file 'tsectl trajectory' takes), and sends nothing (tse-kin plan plans offline).\n"
@@ -109,7 +111,8 @@ const tsectl_command tsectl_commands[] = {
      check_watch, run_watch, 1},
     {"params", "params list | get NAME | set NAME VALUE | dump | save", params_help, check_params, run_params, 1},
     {"trajectory", "trajectory FILE", traj_help, check_trajectory, run_trajectory, 1},
-    {"path", "path WAYPOINTS.csv [--blend M] [--period S] [--dry-run] [--plot FILE.png]", path_help, check_path,
+    {"path", "path WAYPOINTS.csv [--blend M] [--period S] [--jerk J|controller] [--dry-run] [--plot FILE.png]",
+     path_help, check_path,
      run_path, 1},
     {"heartbeat", "heartbeat", "Send the host heartbeat every 100 ms until interrupted (the controller's watchdog\n"
                                 "stops the robot after watchdog_ms of silence while the drives are on).",

@@ -18,6 +18,7 @@ void plan_options_default(plan_options *o)
      * where rows are 10 ms apart; the retries take what the margins leave. */
     o->v_margin = 0.995;
     o->a_margin = 0.985;
+    o->jmax = 0.0; /* none: the controller bounds no trajectory's jerk */
 }
 
 static int bad(plan_result *r, int waypoint, const char *why)
@@ -36,6 +37,8 @@ static int check_input(const plan_waypoint *wp, int n, const plan_options *o, pl
         return bad(r, -1, "the blend tolerance must be 0 to 1 m");
     if (!(o->v_margin > 0.0 && o->v_margin <= 1.0 && o->a_margin > 0.0 && o->a_margin <= 1.0) || o->retries < 0)
         return bad(r, -1, "the margins must be within (0, 1] and the retries at least 0");
+    if (!(o->jmax >= 0.0 && isfinite(o->jmax)))
+        return bad(r, -1, "the jerk limit must be 0 (none) or a positive number of m/s^3");
     if (n < 2)
         return bad(r, -1, "a path needs at least 2 waypoints");
     if (n > PLAN_WAYPOINTS_MAX)
@@ -61,7 +64,7 @@ static int check_input(const plan_waypoint *wp, int n, const plan_options *o, pl
 /* The layout of a plan in memory: its arrays one after another, each 8-byte aligned. */
 typedef struct {
     size_t total;
-    size_t ws, val, m2, pieces, tw, pace, qs, qss, qsj, vcap2, slow, stretch, K, x, t;
+    size_t ws, val, m2, pieces, tw, pace, qs, qss, qsj, vcap2, slow, stretch, K, x, t, xs, ts, cap;
 } layout;
 
 static size_t take(size_t *at, size_t bytes)
@@ -91,6 +94,9 @@ static void lay_out(int n, long N, layout *l)
     l->K = take(&at, g * sizeof(double));
     l->x = take(&at, g * sizeof(double));
     l->t = take(&at, g * sizeof(double));
+    l->xs = take(&at, g * sizeof(double));
+    l->ts = take(&at, g * sizeof(double));
+    l->cap = take(&at, g * sizeof(double));
     l->total = at;
 }
 
@@ -116,6 +122,15 @@ static double chord_length(const plan_waypoint *wp, int n, double r_top)
         len += sqrt(d2);
     }
     return len;
+}
+
+double plan_slide_jmax(const fw_param_set *s)
+{
+    tse_geometry g;
+    fw_limits lim;
+    if (fw_limits_from_params(s, FW_STEP_HZ, FW_SEGMENT_HZ, &g, &lim) != 0)
+        return 0.0;
+    return (double)fw_slide_jmax(&lim);
 }
 
 double plan_row_spacing_min(const fw_param_set *s)
@@ -145,7 +160,8 @@ size_t plan_bytes(const fw_param_set *s, const plan_waypoint *wp, int n, const p
 }
 
 /* Slows the stretch of the path around refused row r->row: the rows from the one before it back
- * over the validator's acceleration window, to the one after. */
+ * over the validator's acceleration window, to the one after, and a jerk window more on each side
+ * (the smoothed law's speed at a point is the average of the law's around it: plan_jerk_smooth). */
 static void slow_down(plan *p, const plan_result *r)
 {
     plan_cursor c;
@@ -160,7 +176,7 @@ static void slow_down(plan *p, const plan_result *r)
         t_prev = row.t - (double)p->hold_us * 1e-6;
     }
     const double stride = (double)FW_ACC_STRIDE / (double)p->lim.segment_hz;
-    const double from = t_prev - 2.0 * stride - p->opt.period, to = t_row + stride;
+    const double from = t_prev - 2.0 * stride - p->opt.period - p->tj, to = t_row + stride + p->tj;
     const double ratio = fmax((double)r->reject[6] * 1e-3, 1.0);
     const bool accel = r->reject[5] >= FW_REJECT_LIMIT;
     const double f = fmin(0.97, accel ? sqrt(0.995 / ratio) : 0.995 / ratio);
@@ -265,6 +281,7 @@ plan *plan_make(void *mem, size_t bytes, const fw_param_set *s, const plan_waypo
     p->vlim = (double)lim.slide_vmax * o->v_margin;
     p->row_f = fmin(1.0, stride / o->period);
     p->alim = (double)(FW_PATH_MARGIN * lim.slide_amax) * o->a_margin * p->row_f; /* what rows may use */
+    p->jmax = o->jmax;
     p->period_us = llround(o->period * 1e6);
     p->hold_us = s->v[FP_TRAJ_LEAD] > PLAN_ROW_MIN_US ? s->v[FP_TRAJ_LEAD] : PLAN_ROW_MIN_US;
     p->min_us = llround(plan_row_spacing_min(s) * 1e6);
@@ -291,6 +308,9 @@ plan *plan_make(void *mem, size_t bytes, const fw_param_set *s, const plan_waypo
     gr->K = (double *)(base + l.K);
     gr->x = (double *)(base + l.x);
     gr->t = (double *)(base + l.t);
+    gr->xs = (double *)(base + l.xs);
+    gr->ts = (double *)(base + l.ts);
+    gr->cap = (double *)(base + l.cap);
     if (plan_path_build(&p->path, wp, n, o->blend, r) != 0)
         return NULL;
     /* The blended path is no longer than the chords: its grid is at most the one laid out. */

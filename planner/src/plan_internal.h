@@ -53,6 +53,8 @@ typedef struct {
     double *K;       /* the backward pass: the greatest s'^2 from which the end is reachable */
     double *x;       /* the forward pass: s'^2 */
     double *t;       /* time at each point [s] */
+    double *xs, *ts; /* scratch: the smoothed law's s'^2 and times (plan_jerk_smooth) */
+    double *cap;     /* a cap on s'^2 that smoothing the law needs (plan_time_law; INFINITY: none) */
 } plan_grid;
 
 struct plan {
@@ -63,6 +65,8 @@ struct plan {
     fw_limits lim;
     fw_param_set set;
     double vlim, alim;     /* the limits planned for (margins, and the rows' acceleration rule) */
+    double jmax;           /* the slides' jerk limit planned for (0: none) */
+    double tj;             /* the jerk window the last law was smoothed over [s] (plan_jerk_smooth) */
     double row_f;          /* min(1, the validator's acceleration stride / period) */
     double q0[6];          /* slides at the first waypoint */
     plan_path path;
@@ -85,6 +89,10 @@ int plan_grid_solve(plan *p, plan_result *r);
 /* The time law over the grid under the limits and slow[]: K, x, t; then tw_us and rows.  Returns
  * 0, or -1 when the path cannot move (r filled). */
 int plan_time_law(plan *p, plan_result *r);
+
+/* Smooths the law x (with its times t) to one whose slides keep to p->jmax (> 0), x and t anew:
+ * the path speed averaged over a window, p->tj. */
+void plan_jerk_smooth(plan *p);
 
 /* Pose at time t [s] of the time law. */
 void plan_pose_at(const plan *p, double t, double pose[6]);

@@ -72,12 +72,36 @@ static bool reaches(const plan *p, long i, double x, double k_next)
     return fmax(lo, -x / h2) <= fmin(hi, (k_next - x) / h2);
 }
 
+/* After smoothing: where the smoothed law is faster than the speed limits allow (its speed at a
+ * point is the average of the law's over the stretch the window covers, where a slide may be
+ * faster for the same path speed), caps the law's speed over that stretch at its present speeds
+ * scaled down by the excess, for the next round.  Returns whether it capped any. */
+static bool capped_where_too_fast(plan *p)
+{
+    plan_grid *gr = &p->grid;
+    bool any = false;
+    /* The law is planned within v_margin of the speed limits, which the smoothing may take. */
+    const double room = 1.0 / (p->opt.v_margin * p->opt.v_margin);
+    for (long i = 1; i < gr->N; ++i) {
+        const double lim = x_speed(p, i);
+        if (!(gr->x[i] > lim * room))
+            continue;
+        const double reach = sqrt(gr->x[i]) * p->tj / gr->h;
+        const long w = reach < (double)gr->N ? (long)ceil(reach) : gr->N;
+        const double scale = lim / gr->x[i] * (1.0 - 1e-3);
+        for (long k = i > w ? i - w : 0; k <= i + w && k <= gr->N; ++k)
+            gr->cap[k] = fmin(gr->cap[k], fmax(gr->x[k] * scale, 0.0));
+        any = true;
+    }
+    return any;
+}
+
 static void backward(plan *p)
 {
     plan_grid *gr = &p->grid;
     gr->K[gr->N] = 0.0;
     for (long i = gr->N - 1; i >= 0; --i) {
-        double hi = x_speed(p, i);
+        double hi = fmin(x_speed(p, i), gr->cap[i]);
         if (!isfinite(hi)) /* no slide moves along the path here: bounded by the next point's reach */
             hi = gr->K[i + 1] + 1.0;
         if (reaches(p, i, hi, gr->K[i + 1])) {
@@ -112,20 +136,40 @@ static void forward(plan *p)
     }
 }
 
-/* Time from grid point i to s (in its interval) under the law's constant acceleration there. */
-static double time_in(const plan_grid *gr, long i, double d)
+/* How far past grid point i the law is tau into its interval: the cubic through both ends' places
+ * and speeds (Hermite).  For the time-optimal law, whose acceleration is constant over an interval
+ * and whose times are 2 h / (v_i + v_i+1) apart, it is that parabola itself; for a smoothed one
+ * (plan_jerk_smooth) it follows its speeds, which a parabola would not (a jerk-limited start is
+ * a cubic in time). */
+static double along(const plan_grid *gr, long i, double tau)
 {
-    const double v = sqrt(gr->x[i]), u = (gr->x[i + 1] - gr->x[i]) / (2.0 * gr->h);
-    if (d <= 0.0)
+    const double D = gr->t[i + 1] - gr->t[i];
+    if (!(D > 0.0))
         return 0.0;
-    return 2.0 * d / (v + sqrt(fmax(v * v + 2.0 * u * d, 0.0)));
+    const double th = fmin(fmax(tau / D, 0.0), 1.0), v0 = sqrt(gr->x[i]) * D, v1 = sqrt(gr->x[i + 1]) * D;
+    const double d = gr->h * th * th * (3.0 - 2.0 * th) + v0 * th * (1.0 - th) * (1.0 - th) - v1 * th * th * (1.0 - th);
+    return fmin(fmax(d, 0.0), gr->h);
 }
 
-int plan_time_law(plan *p, plan_result *r)
+/* Time from grid point i to s (in its interval): along() inverted, by bisection. */
+static double time_in(const plan_grid *gr, long i, double d)
 {
-    plan_grid *gr = &p->grid;
-    backward(p);
-    forward(p);
+    if (d <= 0.0)
+        return 0.0;
+    double lo = 0.0, hi = gr->t[i + 1] - gr->t[i];
+    for (int it = 0; it < 60 && hi - lo > 1e-12; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (along(gr, i, mid) < d)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+/* The times of the grid points under the law x (constant acceleration between two). */
+static int times(plan_grid *gr, plan_result *r)
+{
     gr->t[0] = 0.0;
     for (long i = 0; i < gr->N; ++i) {
         const double sum = sqrt(gr->x[i]) + sqrt(gr->x[i + 1]);
@@ -136,6 +180,25 @@ int plan_time_law(plan *p, plan_result *r)
             return -1;
         }
         gr->t[i + 1] = gr->t[i] + 2.0 * gr->h / sum;
+    }
+    return 0;
+}
+
+int plan_time_law(plan *p, plan_result *r)
+{
+    plan_grid *gr = &p->grid;
+    for (long i = 0; i <= gr->N; ++i)
+        gr->cap[i] = INFINITY;
+    for (int round = 0;; ++round) {
+        backward(p);
+        forward(p);
+        if (times(gr, r) != 0)
+            return -1;
+        if (!(p->jmax > 0.0))
+            break;
+        plan_jerk_smooth(p);
+        if (round == 5 || !capped_where_too_fast(p))
+            break;
     }
     for (int w = 0; w < p->n; ++w) {
         const double s = p->path.ws[w];
@@ -164,8 +227,5 @@ void plan_pose_at(const plan *p, double t, double pose[6])
         return;
     }
     const long lo = plan_interval(gr->t, gr->N + 1, t);
-    const double tau = fmax(t - gr->t[lo], 0.0);
-    const double v = sqrt(gr->x[lo]), u = (gr->x[lo + 1] - gr->x[lo]) / (2.0 * gr->h);
-    const double d = fmin(fmax(v * tau + 0.5 * u * tau * tau, 0.0), gr->h);
-    plan_path_eval(&p->path, (double)lo * gr->h + d, pose, NULL, NULL);
+    plan_path_eval(&p->path, (double)lo * gr->h + along(gr, lo, t - gr->t[lo]), pose, NULL, NULL);
 }

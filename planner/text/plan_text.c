@@ -47,9 +47,13 @@ void plan_print_stats(FILE *f, const char *prefix, const plan_stats *st)
 {
     fprintf(f,
             "%sslide speed up to %.1f%% of %.4g m/s, acceleration up to %.1f%% of %.4g m/s^2 (as the controller "
-            "measures rows); rows with some slide at >= 90%% of a limit: %.1f%% (%ld of %ld, leaving out the first "
-            "and last 5%% of the time)\n",
-            prefix, 100.0 * st->v_peak, st->v_limit, 100.0 * st->a_peak, st->a_limit,
+            "measures rows)",
+            prefix, 100.0 * st->v_peak, st->v_limit, 100.0 * st->a_peak, st->a_limit);
+    if (st->j_limit > 0.0)
+        fprintf(f, ", jerk up to %.1f%% of %.4g m/s^3 (over rows evenly apart)", 100.0 * st->j_peak, st->j_limit);
+    fprintf(f,
+            "; rows with some slide at >= 90%% of a limit: %.1f%% (%ld of %ld, leaving out the first and last 5%% "
+            "of the time)\n",
             st->rows_mid ? 100.0 * (double)st->rows_near / (double)st->rows_mid : 0.0, st->rows_near, st->rows_mid);
 }
 

@@ -59,15 +59,16 @@ TSE_PY_API const char *tse_py_reject_text(const int fields[7], char *buf, size_t
 /* tse-kin plan's planner (planner/): waypoints poses[n][6] (m, rad), each with a time t[n] and a
  * plate speed cap v[n] (NaN where free; t and v may be NULL), under the controller's parameter set
  * params[n_params] (raw, as for tse_py_traj_check), rows `period` s apart, corners cut by at most
- * `blend` m (0: a spline through every waypoint).  Returns the number of rows of the plan, and when
+ * `blend` m (0: a spline through every waypoint), the slides' jerk held to jmax m/s^3 (0: no limit;
+ * below 0: the controller's own, plan_slide_jmax).  Returns the number of rows of the plan, and when
  * it is at most cap fills rows[][7] (t, x, y, z, roll, pitch, yaw); -1 with the reason in err (the
  * planner's words: the waypoint, counted from 1, and why); -2 when n_params is not this library's
  * parameter count.  stats: duration [s], the peak speed and acceleration over their limits, the
  * limits [m/s, m/s^2], the rows outside the first and last 5 % of the time, of those the rows with
  * some slide at 90 % or more of a limit, and the validator's refusals on the way. */
 TSE_PY_API long tse_py_plan(const int *params, int n_params, long n, const double *poses, const double *t,
-                            const double *v, double period, double blend, long cap, double *rows, double stats[8],
-                            char *err, size_t errlen);
+                            const double *v, double period, double blend, double jmax, long cap, double *rows,
+                            double stats[8], char *err, size_t errlen);
 
 #if defined(TSE_REAL_FLOAT) && TSE_REAL_FLOAT
 #define TSE_PY(name) name##_f

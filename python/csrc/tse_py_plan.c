@@ -7,7 +7,8 @@
 #include "tse_py.h"
 
 long tse_py_plan(const int *params, int n_params, long n, const double *poses, const double *t, const double *v,
-                 double period, double blend, long cap, double *rows, double stats[8], char *err, size_t errlen)
+                 double period, double blend, double jmax, long cap, double *rows, double stats[8], char *err,
+                 size_t errlen)
 {
     memset(stats, 0, 8 * sizeof *stats);
     if (n_params != FP_COUNT)
@@ -35,6 +36,7 @@ long tse_py_plan(const int *params, int n_params, long n, const double *poses, c
     plan_options_default(&o);
     o.period = period;
     o.blend = blend;
+    o.jmax = jmax < 0.0 ? plan_slide_jmax(&s) : jmax;
     plan_made m;
     long rc = -1;
     if (plan_text_make(&s, wp, (int)n, &o, "plan", &m, err, errlen) == 0) {

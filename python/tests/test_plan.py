@@ -36,6 +36,24 @@ def test_the_rows_are_tse_kin_plans(tse_kin_cli, tmp_path):
     assert p.v_peak <= 1 and p.a_peak <= 1 and p.near_share >= 0.6
 
 
+def test_a_jerk_limit_is_tse_kin_plans(tse_kin_cli, tmp_path):
+    """jerk="controller" plans as tse-kin plan --jerk controller does, a number as --jerk N; a bad
+    limit is refused before anything is planned."""
+    wp = circle()
+    path = tmp_path / "circle.csv"
+    path.write_text("x,y,z,roll,pitch,yaw\n" + "".join(",".join(repr(float(x)) for x in w) + "\n" for w in wp))
+    for arg, jerk in (("controller", "controller"), ("25", 25.0)):
+        out = subprocess.run([tse_kin_cli, "plan", "--jerk", arg, str(path)], capture_output=True, text=True,
+                             check=True).stdout
+        cli = np.array([[float(x) for x in line.split(",")] for line in out.splitlines() if line[:1].isdigit()])
+        p = plan.plan(wp, jerk=jerk)
+        assert np.array_equal(np.round(p.rows * 1e6), np.round(cli * 1e6))
+        assert p.duration > plan.plan(wp).duration  # smoothed: longer
+    for bad in (0.0, -1.0, math.inf, "slides"):
+        with pytest.raises(ValueError, match="jerk"):
+            plan.plan(wp, jerk=bad)
+
+
 def test_refusals_name_the_waypoint():
     wp = np.array([[0, 0, 1.0, 0, 0, 0], [0, 0, 1.1, 0, 0, 0], [0, 0, 1.7, 0, 0, 0]])
     with pytest.raises(plan.PlanError, match="waypoint 3 is outside the workspace"):

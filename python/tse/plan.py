@@ -65,7 +65,7 @@ def _fn():
         _f = _native.load().tse_py_plan
         _f.restype = ctypes.c_long
         _f.argtypes = [ctypes.POINTER(ctypes.c_int), ctypes.c_int, ctypes.c_long, dp, dp, dp, ctypes.c_double,
-                       ctypes.c_double, ctypes.c_long, dp, dp, ctypes.c_char_p, ctypes.c_size_t]
+                       ctypes.c_double, ctypes.c_double, ctypes.c_long, dp, dp, ctypes.c_char_p, ctypes.c_size_t]
     return _f
 
 
@@ -76,14 +76,16 @@ def _column(a, n, what):
     return a
 
 
-def plan(waypoints, t=None, v=None, params=None, period=0.02, blend=0.0):
+def plan(waypoints, t=None, v=None, params=None, period=0.02, blend=0.0, jerk=None):
     """Plans a path through waypoints ((n, 6) array of x, y, z, roll, pitch, yaw in m and rad).
 
     t: the time each waypoint is passed [s] from the start (NaN where free; the first 0), or None;
     v: the plate's speed from each waypoint to the next at most [m/s] (NaN where none), or None;
     params: the controller's raw parameter set (None: its defaults); period: rows' spacing [s];
     blend: 0 for a smooth curve through every waypoint, else straight pieces whose corners are cut
-    by at most that many metres.  Returns a Plan; raises PlanError with the planner's reason."""
+    by at most that many metres; jerk: None (the controller bounds no trajectory's jerk), a limit for
+    the slides [m/s^3], or "controller" for the one its own moves keep to.  Returns a Plan; raises
+    PlanError with the planner's reason."""
     wp = np.ascontiguousarray(np.asarray(waypoints, dtype=float))
     if wp.ndim != 2 or wp.shape[1] != 6:
         raise ValueError(f"waypoints must be an (n, 6) array of x, y, z, roll, pitch, yaw; got shape {wp.shape}")
@@ -94,6 +96,16 @@ def plan(waypoints, t=None, v=None, params=None, period=0.02, blend=0.0):
         raise ValueError(f"params: {len(raw)} values, the controller has {len(_P.PARAMS)}")
     if not (math.isfinite(period) and math.isfinite(blend)):
         raise ValueError("period and blend must be finite numbers")
+    if jerk is None:
+        jmax = 0.0
+    elif isinstance(jerk, str):
+        if jerk != "controller":
+            raise ValueError(f"jerk: a limit in m/s^3, None or 'controller'; got {jerk!r}")
+        jmax = -1.0
+    else:
+        jmax = float(jerk)
+        if not (math.isfinite(jmax) and jmax > 0.0):
+            raise ValueError(f"jerk: a limit in m/s^3 must be a positive finite number; got {jerk!r}")
     dp = ctypes.POINTER(ctypes.c_double)
     ptr = lambda a: None if a is None else a.ctypes.data_as(dp)
     c_params = (ctypes.c_int * len(raw))(*raw)
@@ -104,7 +116,7 @@ def plan(waypoints, t=None, v=None, params=None, period=0.02, blend=0.0):
     cap = int(20.0 / period) + n + 2
     for _attempt in range(2):
         rows = np.zeros((cap, 7))
-        got = _fn()(c_params, len(raw), n, ptr(wp), ptr(tt), ptr(vv), float(period), float(blend), cap,
+        got = _fn()(c_params, len(raw), n, ptr(wp), ptr(tt), ptr(vv), float(period), float(blend), jmax, cap,
                     ptr(rows), ptr(stats), err, len(err))
         if got == -2:
             raise RuntimeError("libtse_kin.so and tse/_protocol.py know different parameter tables: rebuild the library")

@@ -801,7 +801,10 @@ for args, name, says in [(["plan"], "plan without a file", "FILE"), (["plan", ve
                          (["plan", "--period", "0", vert], "a zero period", "--period"),
                          (["plan", "--period", "2", vert], "a period above 1 s", "--period"),
                          (["check", "--blend", "0.1", vert], "check --blend", "--blend"),
-                         (["plan", "--precision", "float", vert], "plan --precision", "--precision")]:
+                         (["plan", "--precision", "float", vert], "plan --precision", "--precision"),
+                         (["plan", "--jerk", "0", vert], "a zero jerk limit", "--jerk"),
+                         (["plan", "--jerk", "slides", vert], "a jerk limit that is no number", "--jerk"),
+                         (["check", "--jerk", "10", vert], "check --jerk", "--jerk")]:
     rc, out, err = run(args)
     check(f"{name} exits 2 naming {says!r}", rc == 2 and out == "" and says in err, f"rc {rc} {err!r}")
 for text, line, says, name in [
@@ -846,6 +849,16 @@ check("plan of the vertical line takes the bang-bang time of its slides (rows 20
       abs(T / (ds / v + v / a) - 1) < 0.02, f"{T} vs {ds / v + v / a}")
 rc, out, err = run(["check", traj])
 check("check accepts what plan wrote, saying the peaks", rc == 0 and "accepted" in out and err == "", f"rc {rc} {err!r}")
+# With the controller's own slide jerk limit (slide_amax x plate_jmax / plate_amax = 10 m/s^3): the
+# law smoothed over at least a / J, so that much longer at least, its jerk said and within it.
+rc, out, err = run(["plan", "--jerk", "controller", vert])
+jrows = [r for r in out.splitlines() if r and r[0].isdigit()]
+jpeak = re.search(r"jerk up to ([0-9.]+)% of 10 m/s\^3", out)
+check("plan --jerk controller takes a / J longer or more, its slides' jerk within 10 m/s^3",
+      rc == 0 and "slides' jerk within 10 m/s^3" in out and jpeak and float(jpeak.group(1)) <= 100.0 and
+      float(jrows[-1].split(",")[0]) - 0.2 >= T + a / 10.0 - 0.002, f"rc {rc} {err!r} {out[:400]!r}")
+rc, out, err = run(["check", write("vert_jerk.traj", out)])
+check("check accepts the jerk-limited plan", rc == 0, f"rc {rc} {err!r}")
 slow = write("slow.params", "slide_amax = 0.5\n")
 rc, out, err = run(["check", "--params", slow, traj])
 check("check with a lower slide_amax refuses it: exit 3, FILE:LINE, tsectl's words, the slide and how far over",

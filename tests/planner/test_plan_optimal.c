@@ -24,6 +24,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include <string.h>
 
 #include <cmocka.h>
 
@@ -188,11 +189,78 @@ static void test_pure_yaw(void **state)
         }
 }
 
+/* With a jerk limit J the law is smoothed over a window of A / J to 2 A / J (A the acceleration the
+ * rows may have, with the planner's margin), and the motion lasts that much longer than without.
+ * For a line long enough to reach A and cruise, the fastest jerk-limited motion of one slide from
+ * rest to rest is the bang-bang one plus A / J (its acceleration ramps take A / J each, and each
+ * costs half of that): the plan is within 3 % of it.  Each slide's jerk, measured from the rows
+ * 5 ms apart by divided differences of the slides the hand algebra gives, is within J and near
+ * it. */
+static void test_jerk_limited(void **state)
+{
+    (void)state;
+    const double period = 0.005;
+    const fw_param_set s = set_for(period);
+    plan_options o;
+    plan_options_default(&o);
+    o.period = period;
+    /* The controller's own slide jerk limit: slide_amax x plate_jmax / plate_amax, 40 m/s^3 here. */
+    const double J = s.v[FP_SLIDE_AMAX] * 1e-6 * ((double)s.v[FP_PLATE_JMAX] / (double)s.v[FP_PLATE_AMAX]);
+    assert_true(fabs(plan_slide_jmax(&s) - J) < 1e-9 * J);
+    const double heights[][2] = {{0.9, 1.2}, {1.3, 0.8}, {1.0, 1.03}};
+    for (size_t i = 0; i < sizeof heights / sizeof heights[0]; ++i) {
+        const plan_waypoint wp[2] = {waypoint(0, 0, heights[i][0], 0, 0, 0), waypoint(0, 0, heights[i][1], 0, 0, 0)};
+        plan_result r;
+        o.jmax = 0.0;
+        plan *p0 = make_plan(&s, wp, 2, &o, &r);
+        assert_non_null(p0);
+        o.jmax = J;
+        plan *p = make_plan(&s, wp, 2, &o, &r);
+        assert_non_null(p);
+        assert_int_equal(judge_rows(&s, p, wp[0].pose).refused_row, -1);
+        const double A = a_rows(period) * o.a_margin, Tj = A / J;
+        const double longer = plan_duration(p) - plan_duration(p0), T = plan_duration(p) - plan_hold(p);
+        const double T_opt = bang_bang(axis_slide(heights[i][1]) - axis_slide(heights[i][0]), a_rows(period)) +
+                             a_rows(period) / J;
+        /* The slides' jerk: third differences of the rows' slides, rows evenly 5 ms apart. */
+        double q[4] = {0}, t[4] = {0}, worst = 0.0;
+        int have = 0;
+        plan_cursor c;
+        plan_row row;
+        for (plan_rows_begin(p, &c); plan_rows_next(p, &c, &row);) {
+            memmove(q, q + 1, 3 * sizeof q[0]);
+            memmove(t, t + 1, 3 * sizeof t[0]);
+            q[3] = axis_slide(row.pose[2]);
+            t[3] = row.t;
+            /* Six times the third divided difference (rows are evenly spaced within a stretch only). */
+            if (++have >= 5) {
+                double d[4];
+                memcpy(d, q, sizeof d);
+                for (int k = 1; k < 4; ++k)
+                    for (int m = 3; m >= k; --m)
+                        d[m] = (d[m] - d[m - 1]) / (t[m] - t[m - k]);
+                worst = fmax(worst, 6.0 * fabs(d[3]));
+            }
+        }
+        printf("# jerk-limited vertical %.2f -> %.2f m, rows %.3f s apart: %.4f s (%.4f s longer, A / J %.4f s), "
+               "jerk-limited optimum %.4f s (%+.2f %%); slide jerk at most %.1f of %.1f m/s^3\n",
+               heights[i][0], heights[i][1], period, T, longer, Tj, T_opt, 100.0 * (T / T_opt - 1.0), worst, J);
+        assert_true(longer >= Tj - 0.001 && longer <= 2.0 * Tj + 0.001);
+        if (i < 2) /* (the short line reaches neither A nor the speed limit) */
+            assert_true(T >= 0.995 * T_opt && T <= 1.03 * T_opt);
+        assert_true(worst <= 1.05 * J);
+        assert_true(worst >= 0.8 * J); /* the law does use its jerk */
+        free_plan(p);
+        free_plan(p0);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_vertical_line),
         cmocka_unit_test(test_pure_yaw),
+        cmocka_unit_test(test_jerk_limited),
     };
     return cmocka_run_group_tests(tests, setup, NULL);
 }

@@ -14,6 +14,7 @@
 
 #include <cmocka.h>
 
+#include "fw/limits.h"
 #include "fw/types.h"
 #include "plan_support.h"
 #include "tse/ik.h"
@@ -63,6 +64,17 @@ static double uniform(double lo, double hi)
     return lo + (hi - lo) * (double)(rng >> 11) / 9007199254740992.0;
 }
 
+/* Set number `set`'s waypoints: 3 to 12 of them, a few centimetres and hundredths of a radian
+ * apart around the middle of the workspace, yaw within 0.2 rad.  Returns how many. */
+static int random_waypoints(int set, plan_waypoint wp[12])
+{
+    const int n = 3 + set % 10;
+    for (int i = 0; i < n; ++i)
+        wp[i] = waypoint(uniform(-0.06, 0.06), uniform(-0.06, 0.06), uniform(0.95, 1.15), uniform(-0.04, 0.04),
+                         uniform(-0.04, 0.04), uniform(-0.2, 0.2));
+    return n;
+}
+
 static void test_random_paths(void **state)
 {
     (void)state;
@@ -70,10 +82,7 @@ static void test_random_paths(void **state)
     long mid = 0, near = 0;
     for (int set = 0; set < 24; ++set) {
         plan_waypoint wp[12];
-        const int n = 3 + set % 10;
-        for (int i = 0; i < n; ++i)
-            wp[i] = waypoint(uniform(-0.06, 0.06), uniform(-0.06, 0.06), uniform(0.95, 1.15), uniform(-0.04, 0.04),
-                             uniform(-0.04, 0.04), uniform(-0.2, 0.2));
+        const int n = random_waypoints(set, wp);
         plan_options o;
         plan_options_default(&o);
         o.period = periods[set % 2];
@@ -282,10 +291,102 @@ static void test_refusals_name_the_waypoint(void **state)
     check_refusal(one, 1, PLAN_BAD_INPUT, -1, 0, "at least 2");
 }
 
+/* The same random waypoint sets planned with the controller's slide jerk limit J (plan_slide_jmax):
+ * every plan accepted by the validator, through its waypoints; each slide's jerk, from the rows'
+ * slides by differences (rows evenly 5 ms apart within a stretch: four in a row of one spacing),
+ * within J but for the rows' own rounding; and fast: at 60 % or more of the rows outside the first
+ * and last 5 % of the time some slide is at 90 % or more of its speed, acceleration or jerk limit
+ * (speed and acceleration by first and second differences over the rows, the acceleration as the
+ * validator measures it, over 10 ms). */
+static void test_random_paths_jerk_limited(void **state)
+{
+    (void)state;
+    fw_param_set s;
+    fw_params_default(&s);
+    s.v[FP_SLIDE_AMAX] = 4000000; /* rows 5 ms apart need a deeper queue's worth of stop (plan.h) */
+    const double J = plan_slide_jmax(&s), a_rows = 0.95 * 4.0; /* the rows' share of slide_amax */
+    assert_true(J > 0.0);
+    fw_speed_limit sl;
+    assert_int_equal(fw_speed_limit_from_params(&s, FW_STEP_HZ, FW_SEGMENT_HZ, &sl), 0);
+    const double v_lim = (double)sl.vmax;
+    tse_params kp;
+    tse_params_default(&kp);
+    tse_geometry g;
+    assert_int_equal(tse_geometry_init(&g, &kp), TSE_PARAM_OK);
+    double worst_all = 0.0;
+    for (int set = 0; set < 12; ++set) {
+        plan_waypoint wp[12];
+        const int n = random_waypoints(set, wp);
+        plan_options o;
+        plan_options_default(&o);
+        o.period = 0.005;
+        plan_result r;
+        plan *p0 = make_plan(&s, wp, n, &o, &r);
+        assert_non_null(p0);
+        o.jmax = J;
+        plan *p = make_plan(&s, wp, n, &o, &r);
+        char why[512];
+        if (!p)
+            fail_msg("set %d: %s", set, plan_explain(&r, wp, why, sizeof why));
+        assert_int_equal(judge_rows(&s, p, wp[0].pose).refused_row, -1);
+        assert_true(farthest_waypoint(p, wp[0].pose, wp, n) <= 10e-6);
+        double q[5][6], t[5], worst = 0.0, seed[6];
+        int have = 0;
+        long mid = 0, near = 0;
+        const double t0 = plan_hold(p), T_all = plan_duration(p) - t0;
+        plan_cursor c;
+        plan_row row;
+        for (plan_rows_begin(p, &c); plan_rows_next(p, &c, &row);) {
+            tse_ik_result ik;
+            assert_int_equal(tse_ik(&g, row.pose, have ? seed : NULL, &ik), TSE_OK);
+            memcpy(seed, ik.q, sizeof seed);
+            memmove(q, q[1], 4 * sizeof q[0]);
+            memmove(t, t + 1, 4 * sizeof t[0]);
+            memcpy(q[4], ik.q, sizeof q[4]);
+            t[4] = row.t;
+            if (++have < 6)
+                continue;
+            bool even = true;
+            for (int m = 1; m < 4; ++m)
+                even = even && fabs((t[m + 1] - t[m]) - (t[1] - t[0])) < 2e-6;
+            const double P = t[1] - t[0];
+            double fv = 0.0, fa = 0.0, fj = 0.0;
+            for (int k = 0; k < 6; ++k) {
+                fv = fmax(fv, fabs(q[4][k] - q[3][k]) / (t[4] - t[3]) / v_lim);
+                if (even) {
+                    fa = fmax(fa, fabs(q[4][k] - 2.0 * q[2][k] + q[0][k]) / (4.0 * P * P) / a_rows);
+                    const double j = fabs(q[4][k] - 3.0 * q[3][k] + 3.0 * q[2][k] - q[1][k]) / (P * P * P);
+                    worst = fmax(worst, j);
+                    fj = fmax(fj, j / J);
+                }
+            }
+            if (t[2] - t0 > 0.05 * T_all && t[2] - t0 < 0.95 * T_all) {
+                ++mid;
+                near += fv >= 0.9 || fa >= 0.9 || fj >= 0.9;
+            }
+        }
+        const double longer = plan_duration(p) - plan_duration(p0), A = a_rows * o.a_margin;
+        printf("# set %2d, jerk-limited: %.3f s (%.3f s longer than without, A / J %.3f s), retries %d; slide jerk "
+               "at most %.1f of %.1f m/s^3; %.0f %% of rows near a limit\n",
+               set, plan_duration(p), longer, A / J, plan_retries(p), worst, J, 100.0 * (double)near / (double)mid);
+        /* The rows are in whole micrometres: over 5 ms their third differences may be off by
+         * 8 um / (5 ms)^3 = 64 m/s^3 at worst, a fraction of it on average: the bound is J plus that
+         * share of it the jerk of a row of one micrometre rounding makes here. */
+        assert_true(worst <= 1.10 * J + 8e-6 / (0.005 * 0.005 * 0.005) * 0.25);
+        assert_true(longer >= A / J - 0.002);
+        assert_true(near >= 0.6 * (double)mid);
+        worst_all = fmax(worst_all, worst);
+        free_plan(p);
+        free_plan(p0);
+    }
+    printf("# all jerk-limited sets: slide jerk at most %.1f of %.1f m/s^3\n", worst_all, J);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_random_paths),
+        cmocka_unit_test(test_random_paths_jerk_limited),
         cmocka_unit_test(test_blend_cuts_corners),
         cmocka_unit_test(test_times_kept),
         cmocka_unit_test(test_never_returns_refused),

@@ -71,4 +71,9 @@ int fw_speed_limit_from_params(const fw_param_set *s, uint32_t step_hz, uint32_t
 int fw_limits_from_params(const fw_param_set *s, uint32_t step_hz, uint32_t segment_hz,
                           tse_geometry *g, fw_limits *lim);
 
+/* The slides' jerk limit [m/s^3]: the plate's jerk limit in the ratio of the two acceleration
+ * limits, slide_amax x plate_jmax / plate_amax.  Homing's joint move keeps to it, and the path
+ * planner's time laws. */
+tse_real fw_slide_jmax(const fw_limits *lim);
+
 #endif
