@@ -5,6 +5,7 @@
 
 #include "progress.h"
 #include "reject_text.h"
+#include "rest_wait.h"
 #include "tsectl.h"
 
 volatile sig_atomic_t tsectl_interrupted;
@@ -110,60 +111,42 @@ int ctl_simple(tlink *l, proto_msg msg, proto_message *reject)
     return rc;
 }
 
-static int at_rest(int st)
-{
-    return st == FW_STATE_IDLE || st == FW_STATE_DISABLED || st == FW_STATE_FAULT || st == FW_STATE_ESTOP;
-}
-
-/* ctl_wait_rest's loop.  settled: the caller knows that every STATUS from now on reflects what it
- * asked for (a STOP already acknowledged: frames keep their order on the bus), so rest counts at
- * once; otherwise a STATUS sent before the command took effect may show rest, and rest counts only
- * after motion was seen or after 2 s of it. */
+/* ctl_wait_rest's loop, each STATUS judged by rest_wait.h (tse.can judges by the same code).
+ * settled: the caller knows that every STATUS from now on reflects what it asked for. */
 static int wait_rest(tlink *l, double expected_s, const char *what, int show_progress, proto_message *last,
                      int settled)
 {
     const uint64_t t0 = link_now_us();
-    /* Bounded: three times what was planned plus a minute (homing has no plan). */
-    const double limit = 3.0 * (expected_s > 0 ? expected_s : 60.0) + 60.0;
+    rest_wait w;
+    rest_wait_begin(&w, expected_s, settled);
     proto_message m;
-    int seen_motion = 0;
     progress p;
     progress_start(&p, what, -1);
+    char words[160];
     for (;;) {
         const double el = (double)(link_now_us() - t0) * 1e-6;
         if (tsectl_interrupted)
             return EXIT_INTERRUPTED;
-        if (el > limit) {
-            ctl_error("%s did not come to rest within %.0f s", what, limit);
-            return EXIT_TIMEOUT;
-        }
-        if (link_recv(l, &m, 200) != 1 || m.msg != PM_STATUS)
-            continue;
-        const int st = m.v[0];
-        if (last)
+        const bool status = link_recv(l, &m, 200) == 1 && m.msg == PM_STATUS;
+        if (status && last)
             *last = m;
-        if (!at_rest(st))
-            seen_motion = 1;
-        if (show_progress)
-            progress_update(&p, expected_s > 0 ? fmin(el / expected_s, 0.99) : fmin(el / (el + 5.0), 0.99), NULL);
-        if ((seen_motion || settled) && at_rest(st)) {
-            const int ok = st == FW_STATE_IDLE && m.v[1] == FW_FAULT_NONE;
-            if (show_progress && ok)
-                progress_update(&p, 1.0, NULL);
-            progress_break();
-            if (ok) {
-                printf("%s: at rest after %.2f s\n", what, el);
-                return EXIT_OK;
-            }
-            ctl_error("%s ended %s after %.2f s, fault %s", what, proto_enum_name(proto_state_names, st), el,
-                      proto_enum_name(proto_fault_names, m.v[1]));
-            return EXIT_REJECTED;
+        const rest_verdict v = rest_wait_status(&w, el, status ? m.v[0] : -1, status ? m.v[1] : 0, what, words,
+                                                sizeof words);
+        if (v == REST_WAIT_ON) {
+            if (status && show_progress)
+                progress_update(&p, expected_s > 0 ? fmin(el / expected_s, 0.99) : fmin(el / (el + 5.0), 0.99),
+                                NULL);
+            continue;
         }
-        if (!seen_motion && el > 2.0 && at_rest(st)) {
-            progress_break();
-            printf("%s: already at rest\n", what);
-            return st == FW_STATE_FAULT || st == FW_STATE_ESTOP ? EXIT_REJECTED : EXIT_OK;
+        if (show_progress && v == REST_WAIT_DONE)
+            progress_update(&p, 1.0, NULL);
+        progress_break();
+        if (v > 0) {
+            printf("%s\n", words);
+            return EXIT_OK;
         }
+        ctl_error("%s", words);
+        return v == REST_WAIT_TIMEOUT ? EXIT_TIMEOUT : EXIT_REJECTED;
     }
 }
 

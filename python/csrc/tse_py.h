@@ -56,6 +56,18 @@ TSE_PY_API int tse_py_traj_check(const int *params, int n_params, const double p
  * hold any); returns buf. */
 TSE_PY_API const char *tse_py_reject_text(const int fields[7], char *buf, size_t cap);
 
+/* tsectl's wait for rest (rest_wait.h), a STATUS at a time: the longest a wait for a motion planned
+ * to take expected_s (0: unknown) may take [s]; and the judgement of a STATUS (state, fault: raw)
+ * elapsed_s into that wait, *seen_motion carried from one call to the next (0 at first), settled as
+ * rest_wait_begin takes it.  Returns 0: wait on; 1: at rest (done, or already); -1: it ended
+ * badly (disabled, fault, e-stop); -2: no rest within the limit; with the words for any but 0 in
+ * words (cap bytes, 160 hold any). */
+TSE_PY_API double tse_py_rest_limit(double expected_s);
+/* Whether a controller in state (raw) is at rest: 1 or 0. */
+TSE_PY_API int tse_py_rest_state(int state);
+TSE_PY_API int tse_py_rest_judge(double expected_s, int settled, int *seen_motion, double elapsed_s, int state,
+                                 int fault, const char *what, char *words, size_t cap);
+
 /* tse-kin plan's planner (planner/): waypoints poses[n][6] (m, rad), each with a time t[n] and a
  * plate speed cap v[n] (NaN where free; t and v may be NULL), under the controller's parameter set
  * params[n_params] (raw, as for tse_py_traj_check), rows `period` s apart, corners cut by at most

@@ -1,5 +1,5 @@
 """libtse_kin.so, found and loaded once, with ctypes alone (no numpy): the C side of tse.kin and of
-tse.can's trajectory check (python/csrc).
+tse.can's trajectory check, REJECT words and waits for rest (python/csrc).
 
 It is found at $TSE_KIN_LIB, next to this package (an installed copy), or in a build directory
 (build/host/python/libtse_kin.so beside the source tree's python/).

@@ -143,7 +143,6 @@ Streamed.__doc__ = """What trajectory() returns: the rows streamed, the seconds 
 acknowledged, the rows per second that makes, and the rows per second until the controller's queue
 first filled (this client's own pace; None if it never filled: then rows_per_s is)."""
 
-_AT_REST = ("idle", "disabled", "fault", "estop")
 _TELEMETRY_ORDER = ("SLIDES_A", "SLIDES_B", "SLIDES_C", "FK_A", "FK_B", "FK_C")  # a period's frames as sent
 _TELEMETRY_FUNCTIONS = frozenset(_P.MESSAGES[m][0] for m in _TELEMETRY_ORDER)
 _REJECT_FIELDS = tuple(f[0] for f in _P.MESSAGES["REJECT"][3])  # function, seq, reason, ...
@@ -232,6 +231,15 @@ class Rejected(TseError):
 
 def _command_name(function):
     return _BY_FUNCTION.get((function, "to_controller"), "?")
+
+
+def _at_rest(st):
+    """Whether the controller of Status st is at rest, as tsectl judges it (rest_wait.c)."""
+    from . import _native
+    f = _native.load().tse_py_rest_state
+    f.restype = ctypes.c_int
+    f.argtypes = [ctypes.c_int]
+    return f(_enum_value("state", st.state)) != 0
 
 
 def _param_name(pid):
@@ -402,7 +410,7 @@ class Controller:
             return
         try:
             st = self._status
-            if st is not None and st.state not in _AT_REST:
+            if st is not None and not _at_rest(st):
                 self.stop(wait=True)
         except TseError:
             pass
@@ -616,28 +624,36 @@ class Controller:
             return v
 
     def _wait_rest(self, expected, what, settled=False):
-        """tsectl's wait: follows STATUS until the controller is at rest after having been seen in
-        motion (or has been at rest for 2 s without moving; at once when settled: every STATUS from
-        now on comes after what the caller asked for, a STOP already acknowledged).  Fault at rest
-        in fault or e-stop."""
+        """tsectl's wait, by tsectl's own judgement of each STATUS (rest_wait.c in libtse_kin.so):
+        follows STATUS until the controller is at rest after having been seen in motion (or has
+        been at rest for 2 s without moving; at once when settled: every STATUS from now on comes
+        after what the caller asked for, a STOP already acknowledged).  Fault at rest in disabled,
+        fault or e-stop; Timeout past three times what was planned and a minute."""
+        from . import _native  # ctypes only; ImportError saying how to build the library
+        lib = _native.load()
+        lib.tse_py_rest_limit.restype = ctypes.c_double
+        lib.tse_py_rest_limit.argtypes = [ctypes.c_double]
+        judge = lib.tse_py_rest_judge
+        judge.restype = ctypes.c_int
+        judge.argtypes = [ctypes.c_double, ctypes.c_int, ctypes.POINTER(ctypes.c_int), ctypes.c_double, ctypes.c_int,
+                          ctypes.c_int, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_size_t]
+        limit = lib.tse_py_rest_limit(float(expected))
+        seen = ctypes.c_int(0)
+        words = ctypes.create_string_buffer(160)
         t0 = time.monotonic()
-        limit = 3.0 * (expected if expected > 0 else 60.0) + 60.0
-        seen_motion = False
         while True:
             el = time.monotonic() - t0
-            if el > limit:
-                raise Timeout(f"{what} did not come to rest within {limit:.0f} s")
-            st = self._fresh_status(min(self.timeout, limit - el + 0.1))
-            if st.state not in _AT_REST:
-                seen_motion = True
-            elif seen_motion or settled:
-                if st.state == "idle" and st.fault == "none":
-                    return st
-                raise Fault(f"{what} ended {st.state} after {el:.2f} s, fault {st.fault}", st.state, st.fault)
-            elif el > 2.0:  # never seen moving: already at rest
-                if st.state in ("fault", "estop"):
-                    raise Fault(f"{what}: the controller is {st.state}, fault {st.fault}", st.state, st.fault)
+            st = None if el > limit else self._fresh_status(min(self.timeout, limit - el + 0.1))
+            state = -1 if st is None else _enum_value("state", st.state)
+            fault = 0 if st is None else _enum_value("fault", st.fault)
+            v = judge(float(expected), int(settled), ctypes.byref(seen), time.monotonic() - t0 if st else el, state,
+                      fault, what.encode(), words, len(words))
+            if v > 0:
                 return st
+            if v == -2:  # (tse_py.h)
+                raise Timeout(words.value.decode())
+            if v < 0:
+                raise Fault(words.value.decode(), st.state, st.fault)
 
     # -- commands --
     def status(self):
