@@ -5,6 +5,7 @@
 #include "fw/types.h"
 #include "fw/joint_path.h"
 #include "tse/ik.h"
+#include "tse/prototype.h"
 
 /* Prototype defaults (paper, section VI; kinematics.md).  The slides: a 200-step motor at 1/64
  * microstepping on a 10 mm lead, 0.78 um per step, fine enough that rounding the six slides to
@@ -15,18 +16,22 @@
     "the slide's coordinate at the edge; once homed, a disagreement beyond 0.5 mm is a limit "      \
     "fault; a change needs homing again"
 
+/* The kinematic parameters' integer units, um, ppm and urad, are millionths of the SI unit; the
+ * prototype's values (tse/prototype.h) rounded to them, at compile time. */
+#define MILLIONTHS(x) ((int32_t)((x) * 1e6 + 0.5))
+
 const fw_param_def fw_param_table[FP_COUNT] = {
-    [FP_L] = {"L", "um", 100000, 10000000, 1727000, FW_DOC("total scissor length")},
-    [FP_K1] = {"k1", "ppm", 1, 1000000, 264700, FW_DOC("l0 / L")},
-    [FP_ETA] = {"eta", "urad", -1570796, 1570796, 523599, FW_DOC("slide angle from the local x axis")},
-    [FP_K3] = {"k3", "ppm", 0, 1000000, 18600, FW_DOC("r_act / L")},
-    [FP_K4] = {"k4", "ppm", 1, 1000000, 117650, FW_DOC("r_top / L")},
-    [FP_ALPHA_MIN] = {"alpha_min", "urad", 1, 1570796, 188727, FW_DOC("scissor angle stop, low")},
-    [FP_ALPHA_MAX] = {"alpha_max", "urad", 1, 1570796, 1215271, FW_DOC("scissor angle stop, high")},
-    [FP_S_MIN] = {"s_min", "um", 0, 5000000, 0, FW_DOC("slide stroke, low end")},
-    [FP_S_MAX] = {"s_max", "um", 1, 5000000, 900000, FW_DOC("slide stroke, high end")},
-    [FP_MU_MIN] = {"mu_min", "ppm", 0, 999999, 50000, FW_DOC("type-1 singularity margin")},
-    [FP_NU_MIN] = {"nu_min", "ppm", 0, 999999, 1000, FW_DOC("type-2 singularity margin")},
+    [FP_L] = {"L", "um", 100000, 10000000, MILLIONTHS(TSE_PROTO_L), FW_DOC("total scissor length")},
+    [FP_K1] = {"k1", "ppm", 1, 1000000, MILLIONTHS(TSE_PROTO_K1), FW_DOC("l0 / L")},
+    [FP_ETA] = {"eta", "urad", -1570796, 1570796, MILLIONTHS(TSE_PROTO_ETA), FW_DOC("slide angle from the local x axis")},
+    [FP_K3] = {"k3", "ppm", 0, 1000000, MILLIONTHS(TSE_PROTO_K3), FW_DOC("r_act / L")},
+    [FP_K4] = {"k4", "ppm", 1, 1000000, MILLIONTHS(TSE_PROTO_K4), FW_DOC("r_top / L")},
+    [FP_ALPHA_MIN] = {"alpha_min", "urad", 1, 1570796, MILLIONTHS(TSE_PROTO_ALPHA_MIN), FW_DOC("scissor angle stop, low")},
+    [FP_ALPHA_MAX] = {"alpha_max", "urad", 1, 1570796, MILLIONTHS(TSE_PROTO_ALPHA_MAX), FW_DOC("scissor angle stop, high")},
+    [FP_S_MIN] = {"s_min", "um", 0, 5000000, MILLIONTHS(TSE_PROTO_S_MIN), FW_DOC("slide stroke, low end")},
+    [FP_S_MAX] = {"s_max", "um", 1, 5000000, MILLIONTHS(TSE_PROTO_S_MAX), FW_DOC("slide stroke, high end")},
+    [FP_MU_MIN] = {"mu_min", "ppm", 0, 999999, MILLIONTHS(TSE_PROTO_MU_MIN), FW_DOC("type-1 singularity margin")},
+    [FP_NU_MIN] = {"nu_min", "ppm", 0, 999999, MILLIONTHS(TSE_PROTO_NU_MIN), FW_DOC("type-2 singularity margin")},
     [FP_STEPS_PER_M] = {"steps_per_m", "1/m", 1000, 10000000, 1280000, FW_DOC("slide steps per metre (a change needs homing again)")},
     [FP_SLIDE_VMAX] = {"slide_vmax", "um/s", 1000, 2000000, 150000, FW_DOC("slide speed limit")},
     [FP_SLIDE_AMAX] = {"slide_amax", "um/s^2", 1000, 20000000, 1000000, FW_DOC("slide acceleration limit")},

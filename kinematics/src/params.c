@@ -1,21 +1,20 @@
 #include "tse/params.h"
 
+#include "tse/prototype.h"
+
 void tse_params_default(tse_params *p)
 {
-    const tse_real L = TSE_R(1.727);
-    p->L = L;
-    p->k1 = TSE_R(0.2647);
-    p->eta = TSE_PI / TSE_R(6.0);
-    p->k3 = TSE_R(0.0186);
-    p->k4 = TSE_R(0.11765);
-    /* The prototype's stops: retracted height 0.324 m, extended 1.619 m (paper, section VI). */
-    p->alpha_min = tse_asin(TSE_R(0.324) / L);
-    p->alpha_max = tse_asin(TSE_R(1.619) / L);
-    /* kinematics.md: a stroke wide enough that the alpha stops bound the workspace. */
-    p->s_min = TSE_R(0.0);
-    p->s_max = TSE_R(0.90);
-    p->mu_min = TSE_R(0.05);
-    p->nu_min = TSE_R(1e-3);
+    p->L = (tse_real)TSE_PROTO_L;
+    p->k1 = (tse_real)TSE_PROTO_K1;
+    p->eta = (tse_real)TSE_PROTO_ETA;
+    p->k3 = (tse_real)TSE_PROTO_K3;
+    p->k4 = (tse_real)TSE_PROTO_K4;
+    p->alpha_min = (tse_real)TSE_PROTO_ALPHA_MIN;
+    p->alpha_max = (tse_real)TSE_PROTO_ALPHA_MAX;
+    p->s_min = (tse_real)TSE_PROTO_S_MIN;
+    p->s_max = (tse_real)TSE_PROTO_S_MAX;
+    p->mu_min = (tse_real)TSE_PROTO_MU_MIN;
+    p->nu_min = (tse_real)TSE_PROTO_NU_MIN;
 }
 
 /* Written as "accept when inside" so that NaN, which fails every comparison, is rejected too. */
