@@ -9,7 +9,10 @@ static void send_status(fw_controller *c, const fw_view *v)
     uint8_t flags = 0;
     if (v->flags & FW_VIEW_HOMED)
         flags |= PROTO_STATUS_HOMED;
-    if (v->flags & FW_VIEW_DRIVES)
+    /* An e-stop's halt has switched the drives off already, ahead of the tick that completes it
+     * (fw/runtime.h): a STATUS sent meanwhile (a look at the bus during an ESTOP's hand-over) says
+     * so, not the drives of the view the tick last published. */
+    if ((v->flags & FW_VIEW_DRIVES) && !atomic_load(&c->sh.estop_request))
         flags |= PROTO_STATUS_DRIVES;
     if (v->flags & FW_VIEW_ESTOP_IN)
         flags |= PROTO_STATUS_ESTOP_IN;
