@@ -66,7 +66,7 @@ int cmd_plan(const kin_run *run)
     o.blend = run->opt->blend;
     if (run->opt->period > 0.0)
         o.period = run->opt->period;
-    o.jmax = run->opt->jerk < 0.0 ? plan_slide_jmax(&set) : run->opt->jerk;
+    o.jmax = run->opt->jerk;
     plan_waypoint *wp = malloc((size_t)n * sizeof *wp);
     plan_made made = {NULL, NULL};
     if (!wp) {
@@ -86,8 +86,8 @@ int cmd_plan(const kin_run *run)
                plan_row_count(made.p), o.period);
         if (o.blend > 0.0)
             printf(", corners cut by at most %g m", o.blend);
-        if (o.jmax > 0.0)
-            printf(", slides' jerk within %g m/s^3", o.jmax);
+        if (st.j_limit > 0.0)
+            printf(", slides' jerk within %g m/s^3", st.j_limit);
         printf("; the validator refused %d time%s (a stretch slowed each time)\n", plan_retries(made.p),
                plan_retries(made.p) == 1 ? "" : "s");
         plan_print_stats(stdout, "# ", &st);

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "csv.h"
+#include "plan_text.h"
 #include "text.h"
 
 void kin_options_default(kin_options *o)
@@ -162,15 +163,11 @@ static int apply(unsigned bit, const char *name, const char *val, kin_options *o
         }
         return 0;
     case KIN_OPT_JERK:
-        if (strcmp(val, "controller") == 0) {
-            o->jerk = -1.0;
-            return 0;
-        }
-        if (text_number(val, &o->jerk) != 0 || !(o->jerk > 0.0 && o->jerk <= KIN_JERK_MAX)) {
+        if (plan_jerk_from_text(val, &o->jerk) != 0) {
             snprintf(err, errlen,
                      "%s takes the slides' jerk limit in m/s^3 above 0 and up to %g, or 'controller' for the "
                      "controller's own; got '%s'",
-                     name, KIN_JERK_MAX, val);
+                     name, PLAN_JERK_MAX, val);
             return -1;
         }
         return 0;

@@ -42,8 +42,6 @@ enum {
 #define KIN_BLEND_MAX 1.0
 #define KIN_PERIOD_MIN 0.001
 #define KIN_PERIOD_MAX 1.0
-/* --jerk's largest number [m/s^3]: beyond it the smoothing window is below a control period. */
-#define KIN_JERK_MAX 1e6
 
 typedef struct {
     const char *params_path;  /* NULL: the prototype's parameters */
@@ -58,7 +56,7 @@ typedef struct {
     int jobs;                 /* --jobs; 0: the number of cores */
     double blend;             /* --blend [m]; 0: none */
     double period;            /* --period [s]; 0: the command's default */
-    double jerk;              /* --jerk [m/s^3]; 0: none; -1: the controller's own (plan_slide_jmax) */
+    double jerk;              /* --jerk: plan_options.jmax (plan_jerk_from_text); 0: none */
     const char *args[KIN_MAX_ARGS]; /* positional arguments, in order */
     int n_args;
 } kin_options;

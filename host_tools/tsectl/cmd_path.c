@@ -37,9 +37,7 @@ static int parse(int argc, char **argv, path_args *a)
         } else if (!strcmp(s, "--jerk")) {
             if (i + 1 >= argc)
                 return usage_error("path", "a value is missing after", s);
-            if (!strcmp(argv[i + 1], "controller"))
-                a->o.jmax = -1.0; /* the controller's own, once its parameters are read */
-            else if (text_number(argv[i + 1], &a->o.jmax) != 0 || !(a->o.jmax > 0.0 && a->o.jmax <= 1e6))
+            if (plan_jerk_from_text(argv[i + 1], &a->o.jmax) != 0)
                 return usage_error("path", "--jerk takes the slides' jerk limit in m/s^3 above 0 and up to 1e6, or "
                                            "'controller'", argv[i + 1]);
             ++i;
@@ -138,8 +136,6 @@ int run_path(tlink *l, int argc, char **argv)
         const int skip = from_here(rows, n, s.tel.pose, wp);
         const plan_waypoint *first = wp + skip;
         const int count = n + 1 - skip;
-        if (a.o.jmax < 0.0)
-            a.o.jmax = plan_slide_jmax(&s.set);
         if (plan_text_make(&s.set, first, count, &a.o, a.path, &m, err, sizeof err) != 0) {
             ctl_error("%s; nothing was sent", err);
             rc = EXIT_REJECTED;

@@ -37,8 +37,8 @@ static int check_input(const plan_waypoint *wp, int n, const plan_options *o, pl
         return bad(r, -1, "the blend tolerance must be 0 to 1 m");
     if (!(o->v_margin > 0.0 && o->v_margin <= 1.0 && o->a_margin > 0.0 && o->a_margin <= 1.0) || o->retries < 0)
         return bad(r, -1, "the margins must be within (0, 1] and the retries at least 0");
-    if (!(o->jmax >= 0.0 && isfinite(o->jmax)))
-        return bad(r, -1, "the jerk limit must be 0 (none) or a positive number of m/s^3");
+    if (!(o->jmax == PLAN_JMAX_CONTROLLER || (o->jmax >= 0.0 && o->jmax <= PLAN_JERK_MAX)))
+        return bad(r, -1, "the jerk limit must be 0 (none), a positive number of m/s^3 up to 1e6, or the controller's");
     if (n < 2)
         return bad(r, -1, "a path needs at least 2 waypoints");
     if (n > PLAN_WAYPOINTS_MAX)
@@ -122,15 +122,6 @@ static double chord_length(const plan_waypoint *wp, int n, double r_top)
         len += sqrt(d2);
     }
     return len;
-}
-
-double plan_slide_jmax(const fw_param_set *s)
-{
-    tse_geometry g;
-    fw_limits lim;
-    if (fw_limits_from_params(s, FW_STEP_HZ, FW_SEGMENT_HZ, &g, &lim) != 0)
-        return 0.0;
-    return (double)fw_slide_jmax(&lim);
 }
 
 double plan_row_spacing_min(const fw_param_set *s)
@@ -281,7 +272,7 @@ plan *plan_make(void *mem, size_t bytes, const fw_param_set *s, const plan_waypo
     p->vlim = (double)lim.slide_vmax * o->v_margin;
     p->row_f = fmin(1.0, stride / o->period);
     p->alim = (double)(FW_PATH_MARGIN * lim.slide_amax) * o->a_margin * p->row_f; /* what rows may use */
-    p->jmax = o->jmax;
+    p->jmax = o->jmax == PLAN_JMAX_CONTROLLER ? (double)fw_slide_jmax(&lim) : o->jmax;
     p->period_us = llround(o->period * 1e6);
     p->hold_us = s->v[FP_TRAJ_LEAD] > PLAN_ROW_MIN_US ? s->v[FP_TRAJ_LEAD] : PLAN_ROW_MIN_US;
     p->min_us = llround(plan_row_spacing_min(s) * 1e6);

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "reject_text.h"
+#include "text.h"
 
 void plan_waypoints_from_rows(const waypoint_row *rows, int n, plan_waypoint *wp)
 {
@@ -41,6 +42,17 @@ int plan_text_make(const fw_param_set *s, const plan_waypoint *wp, int n, const 
         snprintf(err, errlen, "%s: %s", path, why);
     }
     return -1;
+}
+
+int plan_jerk_from_text(const char *text, double *jmax)
+{
+    double j;
+    if (!strcmp(text, "controller"))
+        j = PLAN_JMAX_CONTROLLER;
+    else if (text_number(text, &j) != 0 || !(j > 0.0 && j <= PLAN_JERK_MAX))
+        return -1;
+    *jmax = j;
+    return 0;
 }
 
 void plan_print_stats(FILE *f, const char *prefix, const plan_stats *st)

@@ -22,6 +22,10 @@ void plan_waypoints_from_rows(const waypoint_row *rows, int n, plan_waypoint *wp
 int plan_text_make(const fw_param_set *s, const plan_waypoint *wp, int n, const plan_options *o, const char *path,
                    plan_made *m, char *err, size_t errlen);
 
+/* --jerk's value as tse-kin plan and tsectl path take it: 'controller' (PLAN_JMAX_CONTROLLER) or a
+ * limit in m/s^3 above 0 and up to PLAN_JERK_MAX.  Returns 0, or -1 with *jmax untouched. */
+int plan_jerk_from_text(const char *text, double *jmax);
+
 /* One line: the peaks against the limits and the share of rows near a limit. */
 void plan_print_stats(FILE *f, const char *prefix, const plan_stats *st);
 

@@ -72,7 +72,7 @@ TSE_PY_API int tse_py_rest_judge(double expected_s, int settled, int *seen_motio
  * plate speed cap v[n] (NaN where free; t and v may be NULL), under the controller's parameter set
  * params[n_params] (raw, as for tse_py_traj_check), rows `period` s apart, corners cut by at most
  * `blend` m (0: a spline through every waypoint), the slides' jerk held to jmax m/s^3 (0: no limit;
- * below 0: the controller's own, plan_slide_jmax).  Returns the number of rows of the plan, and when
+ * below 0: the controller's own, PLAN_JMAX_CONTROLLER).  Returns the number of rows of the plan, and when
  * it is at most cap fills rows[][7] (t, x, y, z, roll, pitch, yaw); -1 with the reason in err (the
  * planner's words: the waypoint, counted from 1, and why); -2 when n_params is not this library's
  * parameter count.  stats: duration [s], the peak speed and acceleration over their limits, the

@@ -36,7 +36,7 @@ long tse_py_plan(const int *params, int n_params, long n, const double *poses, c
     plan_options_default(&o);
     o.period = period;
     o.blend = blend;
-    o.jmax = jmax < 0.0 ? plan_slide_jmax(&s) : jmax;
+    o.jmax = jmax < 0.0 ? PLAN_JMAX_CONTROLLER : jmax;
     plan_made m;
     long rc = -1;
     if (plan_text_make(&s, wp, (int)n, &o, "plan", &m, err, errlen) == 0) {

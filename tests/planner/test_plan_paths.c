@@ -291,7 +291,7 @@ static void test_refusals_name_the_waypoint(void **state)
     check_refusal(one, 1, PLAN_BAD_INPUT, -1, 0, "at least 2");
 }
 
-/* The same random waypoint sets planned with the controller's slide jerk limit J (plan_slide_jmax):
+/* The same random waypoint sets planned with the controller's slide jerk limit J (PLAN_JMAX_CONTROLLER):
  * every plan accepted by the validator, through its waypoints; each slide's jerk, from the rows'
  * slides by differences (rows evenly 5 ms apart within a stretch: four in a row of one spacing),
  * within J but for the rows' own rounding; and fast: at 60 % or more of the rows outside the first
@@ -304,7 +304,8 @@ static void test_random_paths_jerk_limited(void **state)
     fw_param_set s;
     fw_params_default(&s);
     s.v[FP_SLIDE_AMAX] = 4000000; /* rows 5 ms apart need a deeper queue's worth of stop (plan.h) */
-    const double J = plan_slide_jmax(&s), a_rows = 0.95 * 4.0; /* the rows' share of slide_amax */
+    /* slide_amax x plate_jmax / plate_amax; the rows' share of slide_amax. */
+    const double J = 4.0 * (double)s.v[FP_PLATE_JMAX] / (double)s.v[FP_PLATE_AMAX], a_rows = 0.95 * 4.0;
     assert_true(J > 0.0);
     fw_speed_limit sl;
     assert_int_equal(fw_speed_limit_from_params(&s, FW_STEP_HZ, FW_SEGMENT_HZ, &sl), 0);
@@ -323,7 +324,7 @@ static void test_random_paths_jerk_limited(void **state)
         plan_result r;
         plan *p0 = make_plan(&s, wp, n, &o, &r);
         assert_non_null(p0);
-        o.jmax = J;
+        o.jmax = PLAN_JMAX_CONTROLLER; /* J */
         plan *p = make_plan(&s, wp, n, &o, &r);
         char why[512];
         if (!p)

@@ -54,6 +54,11 @@
 #define PLAN_PERIOD_DEFAULT 0.02
 /* The largest blend tolerance [m]. */
 #define PLAN_BLEND_MAX 1.0
+/* The largest jerk limit [m/s^3] (beyond it the smoothing window is below a control period), and
+ * the jmax that asks for the controller's own (fw_slide_jmax: slide_amax x plate_jmax /
+ * plate_amax, which its moves and homing keep to). */
+#define PLAN_JERK_MAX 1e6
+#define PLAN_JMAX_CONTROLLER (-1.0)
 /* Plans made again after a refusal, at most. */
 #define PLAN_RETRIES_DEFAULT 40
 /* The wire's least dt between rows [us]. */
@@ -84,11 +89,11 @@ typedef struct {
     int retries;     /* plans made again after the validator refuses, at most */
     double v_margin; /* the share of the speed limit planned for (the rest covers the rows' rounding) */
     double a_margin; /* the same for the acceleration limit */
-    double jmax;     /* a jerk limit for the slides [m/s^3], or 0 (the default): none.  The controller
-                      * bounds no trajectory's jerk (its rows are straight: each changes the speed at
-                      * once, and the validator judges acceleration over 10 ms); a limit smooths the
-                      * time law to it (plan_jerk_smooth), e.g. plan_slide_jmax's, which the
-                      * controller's own moves keep to */
+    double jmax;     /* a jerk limit for the slides [m/s^3] up to PLAN_JERK_MAX, PLAN_JMAX_CONTROLLER
+                      * for the controller's own, or 0 (the default): none.  The controller bounds no
+                      * trajectory's jerk (its rows are straight: each changes the speed at once, and
+                      * the validator judges acceleration over 10 ms); a limit smooths the time law to
+                      * it (plan_jerk_smooth) */
 } plan_options;
 
 void plan_options_default(plan_options *o);
@@ -158,9 +163,6 @@ int plan_retries(const plan *p);
 int plan_row_waypoint(const plan *p, double t);
 /* The first row's time [s]: where the motion starts. */
 double plan_hold(const plan *p);
-/* The slides' jerk limit the controller's homing keeps to under set s [m/s^3] (fw_slide_jmax:
- * slide_amax x plate_jmax / plate_amax), or 0 for a set it refuses. */
-double plan_slide_jmax(const fw_param_set *s);
 /* The rows' least spacing [s] (the controller's queue and its stop ramp). */
 double plan_row_spacing_min(const fw_param_set *s);
 /* The slides at the first waypoint (where the validator starts). */
@@ -169,8 +171,9 @@ void plan_start_slides(const plan *p, double q[6]);
 /* How near the rows come to the limits, as the controller's validator measures them. */
 typedef struct {
     double v_peak, a_peak;  /* the worst speed and acceleration over their limits (1: at it) */
-    double j_peak, j_limit; /* planned with a jerk limit (j_limit [m/s^3], else 0): the worst jerk over
-                             * it, by third differences of the slides at four rows evenly apart */
+    double j_peak, j_limit; /* planned with a jerk limit (j_limit [m/s^3], the controller's in figures;
+                             * else 0): the worst jerk over it, by third differences of the slides at
+                             * four rows evenly apart */
     double v_limit, a_limit;/* the limits in effect [m/s, m/s^2] */
     long rows_mid;          /* rows outside the first and last 5 % of the motion's time (after the hold) */
     long rows_near;         /* of those, rows with some slide at 90 % or more of a limit (jerk's too) */
