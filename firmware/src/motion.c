@@ -187,13 +187,13 @@ static tse_real advance(fw_controller *c, tse_real end, bool *last)
     if (t->stopping) {
         t->stop_t += dt;
         tse_real rate = TSE_R(0.0);
-        if (t->stop_t < t->stop_T && t->src == FW_SRC_TRAJ) {
+        if (t->stop_t >= t->stop_T) {
+            *last = true;
+        } else if (t->src == FW_SRC_TRAJ) {
             rate = fw_traj_stop_next(&t->traj_stop);
-        } else if (t->stop_t < t->stop_T) {
+        } else {
             const tse_real x = t->stop_t / t->stop_T;
             rate = TSE_R(1.0) - (x - tse_sin(TSE_R(2.0) * TSE_PI * x) / (TSE_R(2.0) * TSE_PI));
-        } else {
-            *last = true;
         }
         tse_real tau = t->tau + rate * dt;
         if (tau >= end) {

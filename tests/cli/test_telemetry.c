@@ -42,14 +42,20 @@ static int feed(telemetry *t, int from, int to, int skip, int skip_in, int *slid
     return done;
 }
 
+/* feed(), then: `done` poses completed, the last one's slides and pose both of period `last`. */
+static void expect_fed(telemetry *t, int from, int to, int skip, int skip_in, int done, int last)
+{
+    int s = -1, p = -1;
+    assert_int_equal(feed(t, from, to, skip, skip_in, &s, &p), done);
+    assert_int_equal(s, last);
+    assert_int_equal(p, last);
+}
+
 static void whole_periods_pair_their_own_frames(void **state)
 {
     (void)state;
     telemetry t = {0};
-    int s = -1, p = -1;
-    assert_int_equal(feed(&t, 1, 5, -1, 0, &s, &p), 5);
-    assert_int_equal(s, 5);
-    assert_int_equal(p, 5);
+    expect_fed(&t, 1, 5, -1, 0, 5, 5);
 }
 
 static void a_lost_frame_drops_its_period_only(void **state)
@@ -57,15 +63,10 @@ static void a_lost_frame_drops_its_period_only(void **state)
     (void)state;
     for (int skip = 0; skip < 6; ++skip) {
         telemetry t = {0};
-        int s = -1, p = -1;
         /* Period 2 loses one frame: periods 1 and 3 complete, each with its own slides. */
-        assert_int_equal(feed(&t, 1, 2, skip, 2, &s, &p), 1);
-        assert_int_equal(s, 1);
-        assert_int_equal(p, 1);
+        expect_fed(&t, 1, 2, skip, 2, 1, 1);
         assert_false(telemetry_has_pose(&t) && telemetry_has_slides(&t));
-        assert_int_equal(feed(&t, 3, 3, -1, 0, &s, &p), 1);
-        assert_int_equal(s, 3);
-        assert_int_equal(p, 3);
+        expect_fed(&t, 3, 3, -1, 0, 1, 3);
     }
 }
 
@@ -81,10 +82,7 @@ static void a_reader_starting_mid_period_waits_for_a_whole_one(void **state)
         assert_int_equal(telemetry_take(&t, &f), 0);
     }
     assert_false(telemetry_has_pose(&t));
-    int s = -1, p = -1;
-    assert_int_equal(feed(&t, 8, 8, -1, 0, &s, &p), 1);
-    assert_int_equal(s, 8);
-    assert_int_equal(p, 8);
+    expect_fed(&t, 8, 8, -1, 0, 1, 8);
 }
 
 /* Not homed: the slides alone, period after period. */
