@@ -4,8 +4,8 @@
 Run through scripts/study.sh, which builds tse-kin and finds Debian's python3 with matplotlib.
 Every figure is tse-kin's; this script only chooses the designs, reads the CSV and draws.  The
 design's kinematic values (to label every line and figure, mark it on the sweeps and size the
-margin maps) are read from its parameter file over tse-kin's defaults (`tse-kin params`) and
-confirmed against tse-kin before use.  The paper's figures and the readings that try to explain
+margin maps) are read from its parameter file by the one reader (tse.kin.Params.from_file, as
+tse-kin --design reads it) and confirmed against tse-kin before use.  The paper's figures and the readings that try to explain
 them are printed and drawn only when the design is the paper's prototype (every kinematic value
 the default); every other label carries the design's own values.
 """
@@ -20,15 +20,6 @@ import time
 # The paper's figures for its prototype (its sections V and VI), drawn beside ours only when the
 # design is the prototype.
 PAPER = {"haf": 11.487, "workspace": 0.28}
-# The kinematic keys of a parameter file in SI (docs/kinematics.md); the file may give the angles
-# in degrees instead.  A key the file leaves out keeps tse-kin's default (`tse-kin params`).
-KIN_KEYS = ["L", "k1", "eta", "k3", "k4", "alpha_min", "alpha_max", "s_min", "s_max", "mu_min", "nu_min"]
-ANGLES = ["eta", "alpha_min", "alpha_max"]
-# Angles a file may give in radians or in degrees: both spellings are one parameter.
-SPELLINGS = {"eta": ("eta", "eta_deg"), "eta_deg": ("eta", "eta_deg"),
-             "alpha_min": ("alpha_min", "alpha_min_deg"), "alpha_min_deg": ("alpha_min", "alpha_min_deg"),
-             "alpha_max": ("alpha_max", "alpha_max_deg"), "alpha_max_deg": ("alpha_max", "alpha_max_deg")}
-
 # The four sweeps of the paper's study: (name, key, from, to), the range widened to the design.
 SWEEPS = [("k1", "k1", 0.1, 1.0), ("k2", "eta_deg", -85.0, 85.0), ("k3", "k3", 0.0, 0.2),
           ("k4", "k4", 0.02, 0.3)]
@@ -58,6 +49,31 @@ FULL = {"grid": "16,24,32", "designs": 50, "draw": "21,60,41", "map": 161, "heig
         "volume": "31,72,61"}
 QUICK = {"grid": "4,6,5", "designs": 5, "draw": "4,8,5", "map": 15, "heights": 8,
          "status_etas": [-60.0, 0.0, 60.0], "volume": "6,12,9"}
+
+
+# The kinematics package (python/tse), for the design's values, its parameters' names and their
+# spellings: the one reader tse-kin uses, not a copy.  Set by load_kin.
+tse_kin = None
+KIN_KEYS = []    # the kinematic parameters' SI names, in the library's order
+ANGLES = []      # those that a file may also give in degrees
+SPELLINGS = {}   # every key a file takes -> (SI name, in degrees)
+
+
+def load_kin(root, tse_kin_path):
+    """tse.kin over the libtse_kin.so built beside tse-kin (<build>/python), unless TSE_KIN_LIB says."""
+    global tse_kin, KIN_KEYS, ANGLES, SPELLINGS
+    if "TSE_KIN_LIB" not in os.environ:
+        build = os.path.dirname(os.path.dirname(os.path.abspath(tse_kin_path)))
+        os.environ["TSE_KIN_LIB"] = os.path.join(build, "python", "libtse_kin.so")
+    if not os.path.isfile(os.environ["TSE_KIN_LIB"]):
+        fail(f"no kinematics library at {os.environ['TSE_KIN_LIB']} (build the tse_kin_py target, or set "
+             "TSE_KIN_LIB)", 2)
+    sys.path.insert(0, os.path.join(root, "python"))
+    import tse.kin
+    tse_kin = tse.kin
+    KIN_KEYS = list(tse_kin.Params().as_dict())
+    SPELLINGS = tse_kin.spellings()
+    ANGLES = [name for name, deg in SPELLINGS.values() if deg]
 
 
 def fail(msg, code=1):
@@ -102,25 +118,13 @@ def key_of(line):
     return body.split("=", 1)[0].strip()
 
 
-def file_values(text):
-    """The kinematic values a parameter file's text sets, in SI (tse-kin has read it already)."""
-    v = {}
-    for line in text.splitlines():
-        k = key_of(line)
-        if k is None:
-            continue
-        val = float(line.lstrip("\ufeff").split("#", 1)[0].split("=", 1)[1].strip())
-        if k in KIN_KEYS:
-            v[k] = val
-        elif k.endswith("_deg") and k[:-4] in ANGLES:
-            v[k[:-4]] = math.radians(val)
-    return v
-
-
-def design_values(defaults, text):
-    """The design's kinematic values (defaults, then the file's), with the angles also in degrees."""
-    v = dict(defaults)
-    v.update(file_values(text))
+def design_values(kin, path):
+    """The design's kinematic values (the prototype's, then the file's, read by the one reader as
+    tse-kin --design reads it), with the angles also in degrees."""
+    try:
+        v = (kin.Params.from_file(path, design=True) if path else kin.Params()).as_dict()
+    except (OSError, ValueError) as e:
+        fail(str(e), 1)
     for k in ANGLES:
         v[k + "_deg"] = math.degrees(v[k])
     return v
@@ -131,9 +135,10 @@ def same(a, b):
 
 
 def variant(base_text, key, value):
-    """The base file with `key` (either spelling) set to value."""
-    drop = set(SPELLINGS.get(key, (key,)))
-    kept = [l for l in base_text.splitlines() if key_of(l) not in drop]
+    """The base file with `key` (in any of its parameter's spellings and cases) set to value."""
+    name = SPELLINGS[key][0]
+    drop = {k.lower() for k, (n, _) in SPELLINGS.items() if n == name}
+    kept = [l for l in base_text.splitlines() if (key_of(l) or "").lower() not in drop]
     return "\n".join(kept + [f"{key} = {value!r}", ""])
 
 
@@ -189,7 +194,7 @@ class Study:
     # ------------------------------------------------------------------ the runs
     def workspace_figures(self, path, grid, orientation=None):
         """tse-kin workspace's summary: reachable points, total, fraction, volume [m^3]."""
-        args = ["workspace", "--params", path, "--grid", grid]
+        args = ["workspace", "--design", path, "--grid", grid]
         if orientation is not None:
             args += ["--orientation", orientation]
         last = self.kin.run(args).strip().splitlines()[-1].split(",")
@@ -198,13 +203,10 @@ class Study:
 
     def design(self):
         """The design's own figures, and its parameter values confirmed by tse-kin."""
-        defaults = file_values(self.kin.run(["params"]))
-        missing = [k for k in KIN_KEYS if k not in defaults]
-        if missing:
-            fail(f"tse-kin params gives no {', '.join(missing)}")
-        self.values = design_values(defaults, self.base_text)
+        defaults = tse_kin.Params().as_dict()
+        self.values = design_values(tse_kin, self.a.params)
         self.is_proto = all(same(self.values[k], defaults[k]) for k in KIN_KEYS)
-        haf_text = self.kin.run(["haf", "--params", self.design_file])
+        haf_text = self.kin.run(["haf", "--design", self.design_file])
         self.write(os.path.join(self.csv, "haf.txt"), haf_text)  # tse-kin haf's own report, its columns in a '#' line
         self.haf_mean = float(haf_text.strip().splitlines()[-1].split(",")[1])
         self.ws_reach, self.ws_total, self.ws, self.ws_volume_grid = self.workspace_figures(self.design_file,
@@ -213,7 +215,7 @@ class Study:
         # A one-design sweep at the value read must be the design itself, to the last digit.
         for key in KIN_KEYS:
             v = self.values[key]
-            row = table(self.kin.run(["sweep", key, repr(v), repr(v), "1", "--params", self.design_file,
+            row = table(self.kin.run(["sweep", key, repr(v), repr(v), "1", "--design", self.design_file,
                                       "--grid", self.a.grid]))[0]
             got = (row["haf"], row["workspace"], row["volume_m3"])
             want = (self.haf_mean, self.ws, self.ws_volume_grid)
@@ -236,7 +238,7 @@ class Study:
             v = self.values[key]
             lo, hi = min(lo, v), max(hi, v)
             self.sweep[name] = self.save(f"sweep_{name}.csv", self.kin.run(
-                ["sweep", key, repr(lo), repr(hi), str(n), "--params", self.design_file, "--grid", self.a.grid]
+                ["sweep", key, repr(lo), repr(hi), str(n), "--design", self.design_file, "--grid", self.a.grid]
                 + self.jobs))
         self.sweep_seconds = time.monotonic() - t0
         g = self.a.grid.replace(",", " x ")
@@ -247,25 +249,25 @@ class Study:
         free = self.params_file("free_stroke", "s_max", self.free_stroke)
         lo, hi = min(0.1, self.values["k1"]), max(1.0, self.values["k1"])
         self.sweep["k1_free"] = self.save("sweep_k1_free_stroke.csv", self.kin.run(
-            ["sweep", "k1", repr(lo), repr(hi), str(n), "--params", free, "--grid", self.a.grid] + self.jobs))
+            ["sweep", "k1", repr(lo), repr(hi), str(n), "--design", free, "--grid", self.a.grid] + self.jobs))
 
     def profiles(self):
         h = str(self.a.heights)
-        self.profile = self.save("profile.csv", self.kin.run(["profile", "--params", self.design_file, "--n", h]))
+        self.profile = self.save("profile.csv", self.kin.run(["profile", "--design", self.design_file, "--n", h]))
         self.variants = {}
         for key, values in PROFILE_VARIANTS.items():
             vals = sorted(set(values + [self.values[key]]))
             self.variants[key] = []
             for v in vals:
                 f = self.params_file(f"{key}_{v:g}", key, v)
-                rows = self.save(f"profile_{key}_{v:g}.csv", self.kin.run(["profile", "--params", f, "--n", h]))
+                rows = self.save(f"profile_{key}_{v:g}.csv", self.kin.run(["profile", "--design", f, "--n", h]))
                 self.variants[key].append((v, rows))
 
     def workspace(self):
         self.points, self.points_volume = {}, {}
         for name, pitch in (("level", 0.0), (f"pitch{PITCH_DEG:g}", PITCH_DEG)):
             o = f"0,{math.radians(pitch)!r},0"
-            text = self.kin.run(["workspace", "--points", "--params", self.design_file, "--grid", self.a.draw,
+            text = self.kin.run(["workspace", "--points", "--design", self.design_file, "--grid", self.a.draw,
                                  "--orientation", o])
             self.points[name] = (pitch, self.save(f"points_{name}.csv", text))
             # Its last line: "# reachable,total,fraction,volume_m3: R,T,F,V[ (paper ...)]".
@@ -275,7 +277,7 @@ class Study:
         self.status_k2 = []
         for eta in self.a.status_etas:
             f = self.params_file(f"eta_{eta:g}", "eta_deg", eta)
-            rows = table(self.kin.run(["workspace", "--points", "--params", f, "--grid", self.a.grid]))
+            rows = table(self.kin.run(["workspace", "--points", "--design", f, "--grid", self.a.grid]))
             counts = [sum(1 for r in rows if r["status"] == st) for st in STATUSES]
             self.status_k2.append((eta, [c / len(rows) for c in counts]))
             lines.append(f"{eta:g}," + ",".join(str(c) for c in counts))
@@ -297,7 +299,7 @@ class Study:
         self.maps = {}
         for eta in MARGIN_ETAS:
             f = self.params_file(f"eta_{eta:g}", "eta_deg", eta)
-            rows = table(self.kin.run(["margins", "--params", f], stdin))
+            rows = table(self.kin.run(["margins", "--design", f], stdin))
             lines = ["x,z,status,scissor,mu1,mu2,mu3,nu"]
             for (x, z), r in zip(poses, rows):
                 lines.append(f"{x!r},{z!r},{r['status']},{int(r['scissor'])},{r['mu1']!r},{r['mu2']!r},"
@@ -326,7 +328,7 @@ class Study:
         self.write(ref2_path, variant(variant(self.base_text, "k1", 1.0), "eta_deg", 0.0))
 
         def profile(path):
-            return table(self.kin.run(["profile", "--params", path, "--z", zs]))
+            return table(self.kin.run(["profile", "--design", path, "--z", zs]))
 
         mine, ref1, ref2 = profile(self.design_file), profile(rigid), profile(ref2_path)
         mean = lambda xs: sum(xs) / len(xs)
@@ -434,7 +436,7 @@ class Study:
 
         def verdicts(lo, hi):
             zs = [lo + (hi - lo) * i / (n - 1) for i in range(n)]
-            out = self.kin.run(["ik", "--params", self.design_file], "".join(f"0,0,{z!r},0,0,0\n" for z in zs))
+            out = self.kin.run(["ik", "--design", self.design_file], "".join(f"0,0,{z!r},0,0,0\n" for z in zs))
             return zs, [line.split(",")[0] == "ok" for line in out.splitlines()]
 
         zs, ok = verdicts(0.0, L)
@@ -755,6 +757,7 @@ def main():
     if a.params and not os.path.isfile(a.params):
         fail(f"no parameter file '{a.params}'", 2)
 
+    load_kin(root, a.tse_kin)
     st = Study(a)
     t0 = time.monotonic()
     st.design()

@@ -6,8 +6,11 @@
 #   scripts/study.sh [--params FILE] [--out DIR] [--grid NR,NPHI,NZ] [--designs N] [--jobs J]
 #                    [--quick] [--tse-kin PATH]
 #
-# Without --tse-kin it builds tse-kin in build/release (optimised: the study's time is quoted).
-# The design comes from --params (a tse-kin parameter file; default the paper's prototype); the
+# Without --tse-kin it builds tse-kin in build/release (optimised: the study's time is quoted), and
+# the kinematics library beside it (<build>/python/libtse_kin.so, or $TSE_KIN_LIB), whose reader
+# gives the design's values.
+# The design comes from --params (a parameter file read as a design, as tse-kin --design reads it;
+# default the paper's prototype); the
 # output goes to --out (default build/study/NAME, NAME the file's name or "prototype"): the PNGs
 # there, the CSVs in its csv/ folder.  The sweeps' time is printed (the paper's full study: four
 # sweeps of 50 designs on its 16 x 24 x 32 grid).  --quick: tiny grids and few designs, for tests.
@@ -38,9 +41,9 @@ if ! "$py" -c 'import matplotlib' 2>/dev/null; then
 fi
 
 if [ -z "$kin" ]; then
-  echo "study: building tse-kin (build/release)" >&2
+  echo "study: building tse-kin and the kinematics library (build/release)" >&2
   (cd "$root" && cmake --preset release >/dev/null &&
-     cmake --build --preset release --target tse-kin -j "$(nproc 2>/dev/null || echo 2)" >/dev/null)
+     cmake --build --preset release --target tse-kin tse_kin_py -j "$(nproc 2>/dev/null || echo 2)" >/dev/null)
   kin=$root/build/release/host_tools/tse-kin
 fi
 [ -x "$kin" ] || { echo "study: no tse-kin at '$kin'" >&2; exit 2; }

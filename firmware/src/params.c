@@ -21,17 +21,17 @@
 #define MILLIONTHS(x) ((int32_t)((x) * 1e6 + 0.5))
 
 const fw_param_def fw_param_table[FP_COUNT] = {
-    [FP_L] = {"L", "um", 100000, 10000000, MILLIONTHS(TSE_PROTO_L), FW_DOC("total scissor length")},
-    [FP_K1] = {"k1", "ppm", 1, 1000000, MILLIONTHS(TSE_PROTO_K1), FW_DOC("l0 / L")},
-    [FP_ETA] = {"eta", "urad", -1570796, 1570796, MILLIONTHS(TSE_PROTO_ETA), FW_DOC("slide angle from the local x axis")},
-    [FP_K3] = {"k3", "ppm", 0, 1000000, MILLIONTHS(TSE_PROTO_K3), FW_DOC("r_act / L")},
-    [FP_K4] = {"k4", "ppm", 1, 1000000, MILLIONTHS(TSE_PROTO_K4), FW_DOC("r_top / L")},
-    [FP_ALPHA_MIN] = {"alpha_min", "urad", 1, 1570796, MILLIONTHS(TSE_PROTO_ALPHA_MIN), FW_DOC("scissor angle stop, low")},
-    [FP_ALPHA_MAX] = {"alpha_max", "urad", 1, 1570796, MILLIONTHS(TSE_PROTO_ALPHA_MAX), FW_DOC("scissor angle stop, high")},
-    [FP_S_MIN] = {"s_min", "um", 0, 5000000, MILLIONTHS(TSE_PROTO_S_MIN), FW_DOC("slide stroke, low end")},
-    [FP_S_MAX] = {"s_max", "um", 1, 5000000, MILLIONTHS(TSE_PROTO_S_MAX), FW_DOC("slide stroke, high end")},
-    [FP_MU_MIN] = {"mu_min", "ppm", 0, 999999, MILLIONTHS(TSE_PROTO_MU_MIN), FW_DOC("type-1 singularity margin")},
-    [FP_NU_MIN] = {"nu_min", "ppm", 0, 999999, MILLIONTHS(TSE_PROTO_NU_MIN), FW_DOC("type-2 singularity margin")},
+    [FP_L] = {TSE_PARAM_NAME_L, "um", 100000, 10000000, MILLIONTHS(TSE_PROTO_L), FW_DOC("total scissor length")},
+    [FP_K1] = {TSE_PARAM_NAME_K1, "ppm", 1, 1000000, MILLIONTHS(TSE_PROTO_K1), FW_DOC("l0 / L")},
+    [FP_ETA] = {TSE_PARAM_NAME_ETA, "urad", -1570796, 1570796, MILLIONTHS(TSE_PROTO_ETA), FW_DOC("slide angle from the local x axis")},
+    [FP_K3] = {TSE_PARAM_NAME_K3, "ppm", 0, 1000000, MILLIONTHS(TSE_PROTO_K3), FW_DOC("r_act / L")},
+    [FP_K4] = {TSE_PARAM_NAME_K4, "ppm", 1, 1000000, MILLIONTHS(TSE_PROTO_K4), FW_DOC("r_top / L")},
+    [FP_ALPHA_MIN] = {TSE_PARAM_NAME_ALPHA_MIN, "urad", 1, 1570796, MILLIONTHS(TSE_PROTO_ALPHA_MIN), FW_DOC("scissor angle stop, low")},
+    [FP_ALPHA_MAX] = {TSE_PARAM_NAME_ALPHA_MAX, "urad", 1, 1570796, MILLIONTHS(TSE_PROTO_ALPHA_MAX), FW_DOC("scissor angle stop, high")},
+    [FP_S_MIN] = {TSE_PARAM_NAME_S_MIN, "um", 0, 5000000, MILLIONTHS(TSE_PROTO_S_MIN), FW_DOC("slide stroke, low end")},
+    [FP_S_MAX] = {TSE_PARAM_NAME_S_MAX, "um", 1, 5000000, MILLIONTHS(TSE_PROTO_S_MAX), FW_DOC("slide stroke, high end")},
+    [FP_MU_MIN] = {TSE_PARAM_NAME_MU_MIN, "ppm", 0, 999999, MILLIONTHS(TSE_PROTO_MU_MIN), FW_DOC("type-1 singularity margin")},
+    [FP_NU_MIN] = {TSE_PARAM_NAME_NU_MIN, "ppm", 0, 999999, MILLIONTHS(TSE_PROTO_NU_MIN), FW_DOC("type-2 singularity margin")},
     [FP_STEPS_PER_M] = {"steps_per_m", "1/m", 1000, 10000000, 1280000, FW_DOC("slide steps per metre (a change needs homing again)")},
     [FP_SLIDE_VMAX] = {"slide_vmax", "um/s", 1000, 2000000, 150000, FW_DOC("slide speed limit")},
     [FP_SLIDE_AMAX] = {"slide_amax", "um/s^2", 1000, 20000000, 1000000, FW_DOC("slide acceleration limit")},
@@ -106,16 +106,6 @@ void fw_params_kinematics(const fw_param_set *s, tse_params *p)
     p->mu_min = (tse_real)s->v[FP_MU_MIN] * micro;
     p->nu_min = (tse_real)s->v[FP_NU_MIN] * micro;
 }
-
-/* Which firmware parameter carries each kinematic one. */
-static const fw_param_id kin_param[TSE_PARAM_COUNT] = {
-    [TSE_PARAM_L] = FP_L,           [TSE_PARAM_K1] = FP_K1,
-    [TSE_PARAM_ETA] = FP_ETA,       [TSE_PARAM_K3] = FP_K3,
-    [TSE_PARAM_K4] = FP_K4,         [TSE_PARAM_ALPHA_MIN] = FP_ALPHA_MIN,
-    [TSE_PARAM_ALPHA_MAX] = FP_ALPHA_MAX, [TSE_PARAM_S_MIN] = FP_S_MIN,
-    [TSE_PARAM_S_MAX] = FP_S_MAX,   [TSE_PARAM_MU_MIN] = FP_MU_MIN,
-    [TSE_PARAM_NU_MIN] = FP_NU_MIN,
-};
 
 int fw_param_value_ok(uint16_t id, int32_t value)
 {
@@ -200,7 +190,7 @@ fw_param_fault fw_params_judge(const fw_param_set *s)
     if (bad == TSE_PARAM_S_MAX && s->v[FP_S_MAX] <= s->v[FP_S_MIN])
         return fault(FP_S_MAX, FW_RULE_STROKE_ORDER);
     if (bad != TSE_PARAM_OK)
-        return fault((int)kin_param[bad], FW_RULE_GEOMETRY);
+        return fault((int)fw_param_of_kin(bad), FW_RULE_GEOMETRY);
     /* r_top * steps_per_m >= 1e6 / FW_PLATE_STEP_URAD, in integers (the board has no double):
      * k4 [ppm] x L [um] x steps_per_m >= 1e18 / urad, each factor within its range. */
     if ((int64_t)s->v[FP_K4] * s->v[FP_L] < INT64_C(1000000000000000000) / FW_PLATE_STEP_URAD / s->v[FP_STEPS_PER_M])

@@ -18,17 +18,30 @@ char *text_trim(char *s)
     return s;
 }
 
-int text_number(const char *s, double *out)
+/* One finite number for strtod, followed by blanks only when `blanks` allows them. */
+static int number(const char *s, int blanks, double *out)
 {
-    if (*s == '\0')
-        return -1;
     char *end;
     errno = 0;
     const double x = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(x))
+    if (end == s || errno == ERANGE || !isfinite(x))
+        return -1;
+    while (blanks && isspace((unsigned char)*end))
+        ++end;
+    if (*end != '\0')
         return -1;
     *out = x;
     return 0;
+}
+
+int text_number(const char *s, double *out)
+{
+    return number(s, 0, out);
+}
+
+int text_value(const char *s, double *out)
+{
+    return number(s, 1, out);
 }
 
 int text_line_error(char *err, size_t errlen, const char *path, int line, const char *fmt, ...)

@@ -10,6 +10,9 @@ char *text_trim(char *s);
  * "nan", "inf" and "1e999" (ERANGE, also an underflow) are refused.  Returns 0 with *out, or -1. */
 int text_number(const char *s, double *out);
 
+/* The same rule with blanks allowed after the number too: a value in a `key = value` file. */
+int text_value(const char *s, double *out);
+
 #include <stddef.h>
 
 /* Writes "PATH:LINE: " and the formatted message into err (what every file reader's refusal reads

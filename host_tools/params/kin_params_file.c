@@ -1,35 +1,37 @@
-/* Parameter file parser: see params_file.h for the promise. */
+/* The kinematic parameters of a parameter file: see kin_params_file.h for the promise. */
+#define _POSIX_C_SOURCE 200809L /* strdup */
 #include "kin_params_file.h"
 
-#include "text.h"
-
-#include <errno.h>
 #include <math.h>
-#include <stdarg.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "fw/params.h"
-#include "line_reader.h"
+#include "param_text.h"
 
-#define KIN_PI 3.14159265358979323846
+#define KIN_PI PARAM_PI
+
+#define DEG PARAM_DEG_SUFFIX
 
 static const kin_param_key_def keys[] = {
-    {TSE_PARAM_L, "L", 0, "m", "L > 0", "total scissor length"},
-    {TSE_PARAM_K1, "k1", 0, "", "0 < k1 <= 1", "l0 / L, the lowest link's share of the length"},
-    {TSE_PARAM_ETA, "eta", 0, "rad", "-pi/2 < eta < pi/2", "slide angle from the local x axis"},
-    {TSE_PARAM_ETA, "eta_deg", 1, "deg", "-90 < eta_deg < 90", "slide angle from the local x axis"},
-    {TSE_PARAM_K3, "k3", 0, "", "k3 >= 0", "r_act / L, radial offset of each scissor's slide origin"},
-    {TSE_PARAM_K4, "k4", 0, "", "k4 > 0", "r_top / L, top plate radius (centre to ball joint)"},
-    {TSE_PARAM_ALPHA_MIN, "alpha_min", 0, "rad", "0 < alpha_min < pi/2", "scissor angle stop, low"},
-    {TSE_PARAM_ALPHA_MIN, "alpha_min_deg", 1, "deg", "0 < alpha_min_deg < 90", "scissor angle stop, low"},
-    {TSE_PARAM_ALPHA_MAX, "alpha_max", 0, "rad", "alpha_min < alpha_max < pi/2", "scissor angle stop, high"},
-    {TSE_PARAM_ALPHA_MAX, "alpha_max_deg", 1, "deg", "alpha_min_deg < alpha_max_deg < 90",
+    {TSE_PARAM_L, TSE_PARAM_NAME_L, 0, "m", "L > 0", "total scissor length"},
+    {TSE_PARAM_K1, TSE_PARAM_NAME_K1, 0, "", "0 < k1 <= 1", "l0 / L, the lowest link's share of the length"},
+    {TSE_PARAM_ETA, TSE_PARAM_NAME_ETA, 0, "rad", "-pi/2 < eta < pi/2", "slide angle from the local x axis"},
+    {TSE_PARAM_ETA, TSE_PARAM_NAME_ETA DEG, 1, "deg", "-90 < eta_deg < 90", "slide angle from the local x axis"},
+    {TSE_PARAM_K3, TSE_PARAM_NAME_K3, 0, "", "k3 >= 0", "r_act / L, radial offset of each scissor's slide origin"},
+    {TSE_PARAM_K4, TSE_PARAM_NAME_K4, 0, "", "k4 > 0", "r_top / L, top plate radius (centre to ball joint)"},
+    {TSE_PARAM_ALPHA_MIN, TSE_PARAM_NAME_ALPHA_MIN, 0, "rad", "0 < alpha_min < pi/2", "scissor angle stop, low"},
+    {TSE_PARAM_ALPHA_MIN, TSE_PARAM_NAME_ALPHA_MIN DEG, 1, "deg", "0 < alpha_min_deg < 90",
+     "scissor angle stop, low"},
+    {TSE_PARAM_ALPHA_MAX, TSE_PARAM_NAME_ALPHA_MAX, 0, "rad", "alpha_min < alpha_max < pi/2",
      "scissor angle stop, high"},
-    {TSE_PARAM_S_MIN, "s_min", 0, "m", "s_min >= 0", "slide stroke, low end"},
-    {TSE_PARAM_S_MAX, "s_max", 0, "m", "s_min < s_max", "slide stroke, high end"},
-    {TSE_PARAM_MU_MIN, "mu_min", 0, "", "0 <= mu_min < 1", "type-1 singularity margin"},
-    {TSE_PARAM_NU_MIN, "nu_min", 0, "", "0 <= nu_min < 1", "type-2 singularity margin"},
+    {TSE_PARAM_ALPHA_MAX, TSE_PARAM_NAME_ALPHA_MAX DEG, 1, "deg", "alpha_min_deg < alpha_max_deg < 90",
+     "scissor angle stop, high"},
+    {TSE_PARAM_S_MIN, TSE_PARAM_NAME_S_MIN, 0, "m", "s_min >= 0", "slide stroke, low end"},
+    {TSE_PARAM_S_MAX, TSE_PARAM_NAME_S_MAX, 0, "m", "s_min < s_max", "slide stroke, high end"},
+    {TSE_PARAM_MU_MIN, TSE_PARAM_NAME_MU_MIN, 0, "", "0 <= mu_min < 1", "type-1 singularity margin"},
+    {TSE_PARAM_NU_MIN, TSE_PARAM_NAME_NU_MIN, 0, "", "0 <= nu_min < 1", "type-2 singularity margin"},
 };
 enum { N_KEYS = (int)(sizeof keys / sizeof keys[0]) };
 
@@ -47,33 +49,16 @@ static const kin_param_key_def *key_of(tse_param_id id, int degrees)
     return NULL;
 }
 
-static const kin_param_key_def *key_of_name(const char *name)
-{
-    for (int i = 0; i < N_KEYS; ++i)
-        if (!strcmp(keys[i].key, name))
-            return &keys[i];
-    return NULL;
-}
-
 const char *kin_param_key(tse_param_id id)
 {
     const kin_param_key_def *k = key_of(id, 0);
     return k ? k->key : "?";
 }
 
-/* The controller's parameters that are not kinematic, by their index in fw_param_table; -1 for
- * any other name. */
-static int controller_only(const char *name)
-{
-    for (int i = 0; i < FP_COUNT; ++i)
-        if (!strcmp(fw_param_table[i].name, name))
-            return key_of_name(name) ? -1 : i;
-    return -1;
-}
-
 int kin_param_is_controller_only(const char *name)
 {
-    return controller_only(name) >= 0;
+    param_key k;
+    return param_lookup(name, &k) == 0 && k.id > (int)fw_param_of_kin(TSE_PARAM_COUNT - 1);
 }
 
 void kin_params_default(kin_param_values *p)
@@ -142,159 +127,69 @@ static void to_tse(const kin_param_values *p, tse_params *t)
     t->nu_min = p->v[TSE_PARAM_NU_MIN];
 }
 
-/* What one parse has seen so far: the parameters, and the lines of the ignored controller keys. */
-typedef struct {
-    kin_param_values p;
-    int controller_line[FP_COUNT];
-    const char *name;
-    char *err;
-    size_t errlen;
-} parse_state;
-
-__attribute__((format(printf, 3, 4))) static int fail(const parse_state *st, int lineno, const char *fmt, ...)
+/* The controller's set that *p stands for: its kinematic values rounded to the wire's integers
+ * (the prototype's are the controller's defaults), the others the controller's defaults.  A design
+ * beyond the wire's ranges (L = 1e39) has no such set: it is only scanned, never judged by it. */
+static void base_set(const kin_param_values *p, fw_param_set *s)
 {
-    char what[384];
-    va_list ap;
-    va_start(ap, fmt);
-    /* ap was started on the line above; clang-tidy 14's analyzer calls it uninitialised since
-     * python/csrc compiles this file a second time.  NOLINTNEXTLINE(clang-analyzer-valist.Uninitialized) */
-    vsnprintf(what, sizeof what, fmt, ap);
-    va_end(ap);
-    snprintf(st->err, st->errlen, "%s:%d: %s", st->name, lineno, what);
-    return -1;
+    fw_params_default(s);
+    for (int id = TSE_PARAM_L; id < TSE_PARAM_COUNT; ++id) {
+        param_key k;
+        const int fid = (int)fw_param_of_kin((tse_param_id)id);
+        param_si_key(fid, &k);
+        const double raw = round(p->v[id] * k.per_unit);
+        s->v[fid] = raw >= (double)INT32_MIN && raw <= (double)INT32_MAX ? (int32_t)raw : 0;
+    }
 }
 
-static int value_of(const parse_state *st, int lineno, const char *key, const char *val, double *x)
+/* The reading's kinematic values, where the file set them, over *p. */
+static kin_params_outcome adopt(const param_reading *r, const char *name, kin_param_values *p, char *err,
+                                size_t errlen)
 {
-    if (text_number(val, x) != 0)
-        return fail(st, lineno, "value of %s is not a finite number: '%s'", key, val);
-    return 0;
-}
-
-/* One line (comment and surrounding blanks included); 0, or -1 with the message in err. */
-static int parse_line(char *buf, int lineno, parse_state *st)
-{
-    char *hash = strchr(buf, '#');
-    if (hash)
-        *hash = '\0';
-    char *line = text_trim(buf);
-    if (*line == '\0')
-        return 0;
-    char *eq = strchr(line, '=');
-    if (!eq)
-        return fail(st, lineno, "expected 'key = value', got '%s'", line);
-    *eq = '\0';
-    const char *key = text_trim(line), *val = text_trim(eq + 1);
-    double x;
-    const int ctl = controller_only(key);
-    if (ctl >= 0) {
-        if (st->controller_line[ctl] > 0)
-            return fail(st, lineno, "'%s' given twice (first on line %d)", key, st->controller_line[ctl]);
-        if (value_of(st, lineno, key, val, &x) != 0)
-            return -1;
-        st->controller_line[ctl] = lineno; /* the controller's: checked, not used here */
-        return 0;
+    kin_param_values next = *p;
+    for (int id = TSE_PARAM_L; id < TSE_PARAM_COUNT; ++id) {
+        const int fid = (int)fw_param_of_kin((tse_param_id)id);
+        next.line[id] = r->line[fid];
+        next.degrees[id] = r->degrees[fid];
+        if (r->line[fid])
+            next.v[id] = r->si[fid];
     }
-    const kin_param_key_def *k = key_of_name(key);
-    if (!k)
-        return fail(st, lineno,
-                    "unknown key '%s' (keys: L, k1, eta, k3, k4, alpha_min, alpha_max, s_min, s_max, mu_min, "
-                    "nu_min; angles also as eta_deg, alpha_min_deg, alpha_max_deg; and the controller's "
-                    "parameters, which 'tse-kin params' lists)",
-                    key);
-    kin_param_values *p = &st->p;
-    if (p->line[k->id] > 0) {
-        const kin_param_key_def *first = key_of(k->id, p->degrees[k->id]);
-        if (first == k)
-            return fail(st, lineno, "'%s' given twice (first on line %d)", key, p->line[k->id]);
-        return fail(st, lineno, "'%s' and '%s' (line %d) are the same parameter; give one of them", key,
-                    first->key, p->line[k->id]);
-    }
-    if (value_of(st, lineno, key, val, &x) != 0)
-        return -1;
-    p->v[k->id] = k->degrees ? x * (KIN_PI / 180.0) : x;
-    p->line[k->id] = lineno;
-    p->degrees[k->id] = k->degrees;
-    return 0;
-}
-
-kin_params_outcome kin_params_parse(const char *text, const char *name, kin_param_values *out, char *err,
-                                    size_t errlen)
-{
-    parse_state st;
-    memset(&st, 0, sizeof st);
-    st.p = *out;
-    st.name = name;
-    st.err = err;
-    st.errlen = errlen;
-    /* Lines already recorded belong to some earlier parse; duplicates are judged within this text. */
-    memset(st.p.line, 0, sizeof st.p.line);
-    memset(st.p.degrees, 0, sizeof st.p.degrees);
-    int lineno = 0;
-    for (const char *cur = text + utf8_bom_length(text, strlen(text)); *cur;) {
-        ++lineno;
-        const char *nl = strchr(cur, '\n');
-        const size_t len = nl ? (size_t)(nl - cur) : strlen(cur);
-        if (len > KIN_PARAMS_MAX_LINE) {
-            snprintf(err, errlen, "%s:%d: line longer than %d characters", name, lineno, KIN_PARAMS_MAX_LINE);
-            return KIN_PARAMS_BAD;
-        }
-        char buf[KIN_PARAMS_MAX_LINE + 1];
-        memcpy(buf, cur, len);
-        buf[len] = '\0';
-        cur = nl ? nl + 1 : cur + len;
-        if (parse_line(buf, lineno, &st) != 0)
-            return KIN_PARAMS_BAD;
-    }
+    /* A design is judged here; a controller's set, already judged, keeps these rules (kin_params_file.h). */
     tse_params t;
-    to_tse(&st.p, &t);
+    to_tse(&next, &t);
     const tse_param_id bad = tse_params_check(&t);
     if (bad != TSE_PARAM_OK) {
-        kin_params_describe_invalid(&st.p, bad, name, "", err, errlen);
+        kin_params_describe_invalid(&next, bad, name, "", err, errlen);
         return KIN_PARAMS_BAD;
     }
-    *out = st.p;
+    *p = next;
     return KIN_PARAMS_OK;
 }
 
-kin_params_outcome kin_params_parse_stream(FILE *f, const char *name, kin_param_values *p, char *err,
-                                           size_t errlen)
+kin_params_outcome kin_params_parse(const char *text, const char *name, kin_params_judge judge, kin_param_values *p,
+                                    char *err, size_t errlen)
 {
-    char *text = malloc(KIN_PARAMS_MAX_BYTES + 1);
-    if (!text) {
+    char *copy = strdup(text);
+    if (!copy) {
         snprintf(err, errlen, "%s: out of memory", name);
         return KIN_PARAMS_UNREADABLE;
     }
-    errno = 0;
-    const size_t n = fread(text, 1, KIN_PARAMS_MAX_BYTES + 1, f);
-    const int read_errno = errno;
-    kin_params_outcome r;
-    if (ferror(f)) {
-        snprintf(err, errlen, "%s: cannot read: %s", name, strerror(read_errno));
-        r = KIN_PARAMS_UNREADABLE;
-    } else if (n > KIN_PARAMS_MAX_BYTES) {
-        snprintf(err, errlen, "%s: larger than %d bytes", name, KIN_PARAMS_MAX_BYTES);
-        r = KIN_PARAMS_BAD;
-    } else if (memchr(text, '\0', n)) {
-        /* A NUL would silently end the text early: this is not a parameter file. */
-        snprintf(err, errlen, "%s: contains a NUL byte (not a text file)", name);
-        r = KIN_PARAMS_BAD;
-    } else {
-        text[n] = '\0';
-        r = kin_params_parse(text, name, p, err, errlen);
-    }
-    free(text);
-    return r;
+    param_reading r;
+    base_set(p, &r.set);
+    const int rc = judge == KIN_PARAMS_DESIGN ? param_text_scan(copy, name, &r, err, errlen)
+                                              : param_text_read(copy, name, &r, err, errlen);
+    free(copy);
+    return rc != 0 ? KIN_PARAMS_BAD : adopt(&r, name, p, err, errlen);
 }
 
-kin_params_outcome kin_params_load(const char *path, kin_param_values *p, char *err, size_t errlen)
+kin_params_outcome kin_params_load(const char *path, kin_params_judge judge, kin_param_values *p, char *err,
+                                   size_t errlen)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-        return KIN_PARAMS_UNREADABLE;
-    }
-    const kin_params_outcome r = kin_params_parse_stream(f, path, p, err, errlen);
-    (void)fclose(f); /* read only: the read's errors are in r */
-    return r;
+    param_reading r;
+    base_set(p, &r.set);
+    const int rc = judge == KIN_PARAMS_DESIGN ? param_file_scan(path, &r, err, errlen)
+                                              : param_file_read_full(path, &r, err, errlen);
+    if (rc != 0)
+        return rc == -2 ? KIN_PARAMS_UNREADABLE : KIN_PARAMS_BAD;
+    return adopt(&r, path, p, err, errlen);
 }

@@ -5,8 +5,6 @@
 
 #include "param_text.h"
 
-#define PI 3.14159265358979323846
-#define DEG_SUFFIX "_deg"
 
 /* Micro-units on the wire and their SI unit; any other wire unit (ms, ns, kbit/s, 1/m, 1/s) is
  * already the unit people write, one raw unit apiece. */
@@ -39,7 +37,7 @@ static int is_angle(int id)
 
 int param_lookup(const char *name, param_key *k)
 {
-    const size_t n = strlen(name), ns = strlen(DEG_SUFFIX);
+    const size_t n = strlen(name), ns = strlen(PARAM_DEG_SUFFIX);
     for (int id = 0; id < FP_COUNT; ++id) {
         const char *t = fw_param_table[id].name;
         if (!strcasecmp(name, t)) {
@@ -47,9 +45,9 @@ int param_lookup(const char *name, param_key *k)
             return 0;
         }
         if (is_angle(id) && n == strlen(t) + ns && !strncasecmp(name, t, strlen(t)) &&
-            !strcasecmp(name + strlen(t), DEG_SUFFIX)) {
+            !strcasecmp(name + strlen(t), PARAM_DEG_SUFFIX)) {
             k->id = id;
-            k->per_unit = 1e6 * PI / 180.0;
+            k->per_unit = 1e6 * PARAM_PI / 180.0;
             k->unit = "deg";
             return 0;
         }

@@ -25,6 +25,11 @@ typedef struct {
     const char *unit;/* the unit of this spelling ("m", "rad", "deg", "m/s", "" for a ratio, "ms") */
 } param_key;
 
+#define PARAM_PI 3.14159265358979323846
+
+/* The suffix of an angle's spelling in degrees: eta_deg. */
+#define PARAM_DEG_SUFFIX "_deg"
+
 /* Looks a name up, case-insensitively: a table name (SI) or an angle's name + "_deg".
  * Returns 0, or -1 for an unknown name (k untouched). */
 int param_lookup(const char *name, param_key *k);
@@ -38,6 +43,10 @@ void param_si_key(int id, param_key *k);
  * can_kbps other than the four rates), with a message naming the parameter, the value, the unit
  * and the range in k's unit, e.g. "slide_vmax = 3 m/s is outside 0.001..2 m/s". */
 int param_from_text(const param_key *k, const char *text, int32_t *raw, char *err, size_t errlen);
+
+/* param_from_text's number rule alone, for a reader that judges no range (param_text_scan): 0,
+ * or -1 with "NAME: 'TEXT' is not one finite number (in UNIT)". */
+int param_number_from_text(const param_key *k, const char *text, char *err, size_t errlen);
 
 /* Writes raw in k's unit, exactly where the integer allows ("0.15" for 150000 um/s, "1.727" for
  * 1727000 um); in a unit that is not a power of ten of the raw one (degrees), the fewest digits
@@ -74,6 +83,36 @@ int param_sets_speed_limit(int id);
  * when the file does not set that key, the message says its kept value is what is in conflict).
  * An unreadable file is "PATH: ...".  Returns 0, or -1 with *s unchanged. */
 int param_file_read(const char *path, fw_param_set *s, char *err, size_t errlen);
+
+/* What a parameter file said, beside the set it gives: the one reader's whole answer, for the
+ * tools that compute with the values as written (tse-kin, tse.kin.Params) rather than with the
+ * wire's integers.  A file's value is within its parameter's range as written (param_from_text),
+ * so the written values keep every rule that the integers keep. */
+typedef struct {
+    fw_param_set set;     /* what the controller takes (the integers) */
+    double si[FP_COUNT];  /* each value as the file wrote it, in SI (an angle in _deg in radians);
+                           * a parameter the file does not set: its integer in SI */
+    int line[FP_COUNT];   /* the line that set it; 0: not in the file */
+    int degrees[FP_COUNT];/* set through its _deg spelling */
+} param_reading;
+
+/* A reading of no file over set base: no lines, base's values. */
+void param_reading_start(param_reading *r, const fw_param_set *base);
+
+/* param_file_read's rules over `text` (modified in place; NUL-terminated), `name` naming it in
+ * messages, over r->set; on success *r is the whole reading, else -1 with *r unchanged. */
+int param_text_read(char *text, const char *name, param_reading *r, char *err, size_t errlen);
+
+/* The same for the file at path (param_file_read's limits); -2 (not -1) for a file that cannot be
+ * opened or read. */
+int param_file_read_full(const char *path, param_reading *r, char *err, size_t errlen);
+
+/* The reader's rules for a design rather than a controller (tse-kin --design): the same lines,
+ * keys, case, numbers and duplicates, but no value is held to the controller's ranges and the set
+ * to none of its rules (the caller judges the design by its own).  r->si has the values; r->set
+ * is left as it was. */
+int param_text_scan(char *text, const char *name, param_reading *r, char *err, size_t errlen);
+int param_file_scan(const char *path, param_reading *r, char *err, size_t errlen);
 
 /* Writes set s to PATH through PATH.tmp, fsynced and renamed over PATH (keeping PATH's
  * permissions): never a half-written file.

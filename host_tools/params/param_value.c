@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "param_text_internal.h"
+#include "text.h"
 
 /* The power of ten that per_unit is (0 for 1, 6 for 1e6), or -1. */
 static int decimal_places(double per_unit)
@@ -24,25 +25,6 @@ static int nearest_raw(const param_key *k, double x, double *r)
 {
     *r = round(x * k->per_unit);
     return *r >= (double)INT32_MIN && *r <= (double)INT32_MAX;
-}
-
-/* A whole token, blanks around it allowed, that is one finite number. */
-static int parse_number(const char *text, double *x)
-{
-    while (isspace((unsigned char)*text))
-        ++text;
-    if (!*text)
-        return -1;
-    char *end;
-    const double v = strtod(text, &end);
-    if (end == text)
-        return -1;
-    while (isspace((unsigned char)*end))
-        ++end;
-    if (*end || !isfinite(v))
-        return -1;
-    *x = v;
-    return 0;
 }
 
 const char *param_to_text(const param_key *k, int32_t raw, char *buf, size_t cap)
@@ -73,7 +55,7 @@ const char *param_to_text(const param_key *k, int32_t raw, char *buf, size_t cap
         char t[64];
         snprintf(t, sizeof t, "%.*f", d, x);
         double back, r;
-        if (parse_number(t, &back) == 0 && nearest_raw(k, back, &r) && r == (double)raw) {
+        if (text_value(t, &back) == 0 && nearest_raw(k, back, &r) && r == (double)raw) {
             snprintf(buf, cap, "%s", t);
             return buf;
         }
@@ -89,6 +71,17 @@ const char *param_value_words(const param_key *k, int32_t raw, char *buf, size_t
     return buf;
 }
 
+/* A range's end in k's unit, in as few digits as stay inside the range (side -1: the low end, 1:
+ * the high one): in degrees, "90" would round to the high end of eta's range yet lie outside it. */
+static const char *bound_text(const param_key *k, int32_t raw, int side, char *buf, size_t cap)
+{
+    param_to_text(k, raw, buf, cap);
+    double x;
+    for (int d = 1; d <= 17 && text_value(buf, &x) == 0 && side * (x * k->per_unit - raw) > 0; ++d)
+        snprintf(buf, cap, "%.*g", d, (double)raw / k->per_unit);
+    return buf;
+}
+
 void param_range_error(const param_key *k, double raw, const char *shown, char *err, size_t errlen)
 {
     const fw_param_def *d = &fw_param_table[k->id];
@@ -99,20 +92,29 @@ void param_range_error(const param_key *k, double raw, const char *shown, char *
         return;
     }
     char lo[64], hi[64];
-    param_to_text(k, d->min, lo, sizeof lo);
-    param_to_text(k, d->max, hi, sizeof hi);
+    bound_text(k, d->min, -1, lo, sizeof lo);
+    bound_text(k, d->max, 1, hi, sizeof hi);
     snprintf(err, errlen, "%s = %s%s%s is outside %s..%s%s%s", d->name, shown, sp, k->unit, lo, hi, sp, k->unit);
+}
+
+int param_number_from_text(const param_key *k, const char *text, char *err, size_t errlen)
+{
+    double x;
+    /* The number rule of every host reader (text.h): 1e-400 is no more a 0 here than 1e400 is big. */
+    if (text_value(text, &x) != 0) {
+        snprintf(err, errlen, "%s: '%.40s' is not one finite number%s%s%s", fw_param_table[k->id].name, text,
+                 *k->unit ? " (in " : "", k->unit, *k->unit ? ")" : "");
+        return -1;
+    }
+    return 0;
 }
 
 int param_from_text(const param_key *k, const char *text, int32_t *raw, char *err, size_t errlen)
 {
     const fw_param_def *d = &fw_param_table[k->id];
     double x, r;
-    if (parse_number(text, &x) != 0) {
-        snprintf(err, errlen, "%s: '%.40s' is not one finite number%s%s%s", d->name, text,
-                 *k->unit ? " (in " : "", k->unit, *k->unit ? ")" : "");
+    if (param_number_from_text(k, text, err, errlen) != 0 || text_value(text, &x) != 0)
         return -1;
-    }
     /* Shown as given (blanks aside): the writer recognises their own number. */
     while (isspace((unsigned char)*text))
         ++text;
@@ -121,8 +123,12 @@ int param_from_text(const param_key *k, const char *text, int32_t *raw, char *er
         --n;
     char shown[48];
     snprintf(shown, sizeof shown, "%.*s", (int)(n < 40 ? n : 40), text);
-    if (!nearest_raw(k, x, &r) || !fw_param_value_ok((uint16_t)k->id, (int32_t)r)) {
-        param_range_error(k, r, shown, err, errlen);
+    /* The range holds for the value as written, before rounding to the wire's unit: what the
+     * message says, and what lets tse-kin compute with the written value (kin_params_file.h). */
+    const double exact = x * k->per_unit;
+    if (!(exact >= (double)d->min && exact <= (double)d->max) || !nearest_raw(k, x, &r) ||
+        !fw_param_value_ok((uint16_t)k->id, (int32_t)r)) {
+        param_range_error(k, exact, shown, err, errlen);
         return -1;
     }
     *raw = (int32_t)r;

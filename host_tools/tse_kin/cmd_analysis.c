@@ -13,7 +13,7 @@
 #include "haf_heights.h"
 
 const char cmd_haf_help[] =
-    "usage: tse-kin haf [--params FILE] [--precision float|double] [--z Z1,Z2,...]\n"
+    "usage: tse-kin haf [--params|--design FILE] [--precision float|double] [--z Z1,Z2,...]\n"
     "\n"
     "Vertical spatial gear ratio and Height Amplification Factor (docs/kinematics.md). At each\n"
     "height Z (metres; default: 9 heights spread over L sin(alpha_min) .. L sin(alpha_max), 5 % of\n"
@@ -29,7 +29,7 @@ const char cmd_haf_help[] =
     "\n" KIN_HELP_PARAMS "\n" KIN_HELP_EXIT;
 
 const char cmd_workspace_help[] =
-    "usage: tse-kin workspace [--grid NR,NPHI,NZ] [--orientation R,P,Y] [--params FILE]\n"
+    "usage: tse-kin workspace [--grid NR,NPHI,NZ] [--orientation R,P,Y] [--params|--design FILE]\n"
     "                         [--precision float|double] [--points]\n"
     "\n"
     "Workspace percentage of the paper: counts the reachable points (status ok) of the cylindrical\n"

@@ -13,7 +13,7 @@
 enum { BENCH_REPEATS = 31 };
 
 const char cmd_bench_help[] =
-    "usage: tse-kin bench [--params FILE] [--n N]\n"
+    "usage: tse-kin bench [--params|--design FILE] [--n N]\n"
     "       tse-kin bench plan [--params FILE]\n"
     "\n"
     "bench plan: plans a path of 1,000 waypoints (the planner of tse-kin plan) and validates the\n"

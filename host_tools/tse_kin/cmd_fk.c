@@ -8,7 +8,7 @@
 #include "stream.h"
 
 const char cmd_fk_help[] =
-    "usage: tse-kin fk [--params FILE] [--precision float|double]\n"
+    "usage: tse-kin fk [--params|--design FILE] [--precision float|double]\n"
     "\n"
     "Forward kinematics. Reads s_a1,s_b1,s_a2,s_b2,s_a3,s_b3 (metres), optionally followed by a seed\n"
     "pose x,y,z,roll,pitch,yaw (six more numbers; without it the home pose is the seed), and writes\n"

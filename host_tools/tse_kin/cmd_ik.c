@@ -8,7 +8,7 @@
 #include "stream.h"
 
 const char cmd_ik_help[] =
-    "usage: tse-kin ik [--params FILE] [--precision float|double]\n"
+    "usage: tse-kin ik [--params|--design FILE] [--precision float|double]\n"
     "\n"
     "Inverse kinematics. Reads poses x,y,z,roll,pitch,yaw (metres, radians; R = Rz(yaw) Ry(pitch)\n"
     "Rx(roll)), one per line, and writes per line:\n"

@@ -7,7 +7,7 @@
 #include "stream.h"
 
 const char cmd_jacobian_help[] =
-    "usage: tse-kin jacobian [--params FILE] [--precision float|double]\n"
+    "usage: tse-kin jacobian [--params|--design FILE] [--precision float|double]\n"
     "\n"
     "Differential kinematics. Reads poses like 'ik' and writes one line of 44 fields per line:\n"
     "  status,scissor,J11,J12,...,J16,J21,...,J66,sv1,...,sv6\n"

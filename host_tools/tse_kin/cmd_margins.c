@@ -10,7 +10,7 @@
 #include "stream.h"
 
 const char cmd_margins_help[] =
-    "usage: tse-kin margins [--params FILE] [--precision float|double]\n"
+    "usage: tse-kin margins [--params|--design FILE] [--precision float|double]\n"
     "\n"
     "Singularity margins. Reads poses like 'ik' and writes one line per line:\n"
     "  status,scissor,mu1,mu2,mu3,nu\n"

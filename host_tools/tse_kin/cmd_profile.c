@@ -15,7 +15,7 @@
 enum { PROFILE_DEFAULT_N = 60 };
 
 const char cmd_profile_help[] =
-    "usage: tse-kin profile [--params FILE] [--precision float|double] [--z Z1,Z2,...|--n N]\n"
+    "usage: tse-kin profile [--params|--design FILE] [--precision float|double] [--z Z1,Z2,...|--n N]\n"
     "\n"
     "The Jacobian's singular values along the vertical axis (the paper's singular-value figures).\n"
     "At each height Z (metres; --z, or --n N heights evenly from L sin(alpha_min) to L sin(alpha_max)\n"

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "commands.h"
 #include "csv.h"
@@ -25,7 +26,7 @@
 enum { SWEEP_GRID_R = 16, SWEEP_GRID_PHI = 24, SWEEP_GRID_Z = 32 };
 
 const char cmd_sweep_help[] =
-    "usage: tse-kin sweep PARAM FROM TO N [--grid NR,NPHI,NZ] [--params FILE]\n"
+    "usage: tse-kin sweep PARAM FROM TO N [--grid NR,NPHI,NZ] [--params|--design FILE]\n"
     "                     [--precision float|double] [--jobs J]\n"
     "\n"
     "The paper's design study: N designs with the parameter-file key PARAM spaced evenly from FROM to\n"
@@ -70,7 +71,7 @@ static const kin_param_key_def *find_key(const char *name)
     const kin_param_key_def *keys;
     const int n = kin_param_keys(&keys);
     for (int i = 0; i < n; ++i)
-        if (!strcmp(keys[i].key, name))
+        if (!strcasecmp(keys[i].key, name)) /* the parameter files' case rule (param_lookup) */
             return &keys[i];
     return NULL;
 }

@@ -70,14 +70,19 @@ extern const char cmd_check_help[];
 
 /* Shared paragraphs of the usage texts. */
 #define KIN_HELP_PARAMS                                                                                      \
-    "Parameter file (--params): 'key = value' lines, '#' starts a comment, blank lines and a UTF-8\n"        \
-    "BOM allowed; 'tse-kin params' prints one with every key. Keys: L, k1, eta, k3, k4, alpha_min,\n"        \
-    "alpha_max, s_min, s_max, mu_min, nu_min in SI (metres, radians, ratios; see docs/kinematics.md);\n"     \
-    "the angles may instead be given in degrees as eta_deg, alpha_min_deg, alpha_max_deg. The\n"             \
-    "controller's other parameters (slide_vmax, watchdog_ms, ...) are checked to be numbers and\n"           \
-    "ignored. Missing keys keep the prototype's values. An unknown or repeated key (also both\n"             \
-    "spellings of an angle), a value that is not one finite number, or an invalid set is an error\n"         \
-    "naming the file and line (exit 1).\n"
+    "Parameter file (--params FILE): the controller's parameter file, read as tse-sim and tsectl read\n"     \
+    "it: 'key = value' lines, '#' starts a comment, blank lines and a UTF-8 BOM allowed; keys in any\n"      \
+    "case; 'tse-kin params' prints one with every key. Kinematic keys: L, k1, eta, k3, k4,\n"               \
+    "alpha_min, alpha_max, s_min, s_max, mu_min, nu_min in SI (metres, radians, ratios; see\n"              \
+    "docs/kinematics.md), the angles also in degrees as eta_deg, alpha_min_deg, alpha_max_deg; the\n"       \
+    "controller's others (slide_vmax, watchdog_ms, ...) as 'tsectl params list' gives them. Missing\n"      \
+    "keys keep the prototype's values. An unknown or repeated key (also both spellings of an angle),\n"     \
+    "a value that is not one finite number or outside the controller's range, or a set the\n"               \
+    "controller refuses is an error naming the file and line (exit 1): tse-kin takes exactly the\n"         \
+    "files tse-sim takes. --design FILE reads the same file as a design to analyse rather than a\n"        \
+    "controller's set: only docs/kinematics.md's rules for a valid set hold (any L > 0, no homing\n"        \
+    "switches needed), the controller's other keys only need to be numbers. Either way the\n"               \
+    "kinematic values are used as written, in double.\n"
 
 #define KIN_HELP_ROWS                                                                                        \
     "Input rows: comma-separated numbers, spaces around them allowed, LF or CRLF line ends, a UTF-8\n"       \

@@ -119,9 +119,13 @@ static int run_command(const command *c, int argc, char **argv)
     kin_param_values params;
     kin_params_default(&params);
     const char *params_name = "the default parameters";
+    if (opt.params_design && c->needs_design == CONTROLLER_SET)
+        return usage_error(cmd_prefix, "--design: plans and trajectories are judged against a controller's set; "
+                                       "give it as --params FILE");
     if (opt.params_path && c->needs_design != CONTROLLER_SET) {
         params_name = opt.params_path;
-        if (kin_params_load(opt.params_path, &params, msg, sizeof msg) != KIN_PARAMS_OK) {
+        if (kin_params_load(opt.params_path, opt.params_design ? KIN_PARAMS_DESIGN : KIN_PARAMS_CONTROLLER, &params,
+                            msg, sizeof msg) != KIN_PARAMS_OK) {
             fprintf(stderr, "tse-kin: %s\n", msg);
             return KIN_EXIT_FILE;
         }

@@ -29,6 +29,7 @@ typedef struct {
 
 static const option_def defs[] = {
     {"--params", KIN_OPT_PARAMS, 1},
+    {"--design", KIN_OPT_PARAMS, 1}, /* the same file, judged as a design: one of the two counts */
     {"--precision", KIN_OPT_PRECISION, 1},
     {"--grid", KIN_OPT_GRID, 1},
     {"--orientation", KIN_OPT_ORIENTATION, 1},
@@ -99,6 +100,7 @@ static int apply(unsigned bit, const char *name, const char *val, kin_options *o
         if (*val == '\0')
             break;
         o->params_path = val;
+        o->params_design = !strcmp(name, "--design");
         return 0;
     case KIN_OPT_PRECISION:
         if (strcmp(val, "float") != 0 && strcmp(val, "double") != 0)

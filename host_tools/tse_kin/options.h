@@ -11,7 +11,7 @@
 
 /* Which options a command takes (a bit set). */
 enum {
-    KIN_OPT_PARAMS = 1u << 0,      /* --params FILE */
+    KIN_OPT_PARAMS = 1u << 0,      /* --params FILE or --design FILE */
     KIN_OPT_PRECISION = 1u << 1,   /* --precision float|double */
     KIN_OPT_GRID = 1u << 2,        /* --grid NR,NPHI,NZ */
     KIN_OPT_ORIENTATION = 1u << 3, /* --orientation R,P,Y */
@@ -45,6 +45,7 @@ enum {
 
 typedef struct {
     const char *params_path;  /* NULL: the prototype's parameters */
+    int params_design;        /* given as --design: judged as a design (kin_params_file.h) */
     int use_float;            /* --precision float */
     int grid[3];              /* n_r, n_phi, n_z */
     double orientation[3];    /* roll, pitch, yaw [rad] */

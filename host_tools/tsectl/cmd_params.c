@@ -1,4 +1,4 @@
-/* params list | get NAME | set NAME VALUE | dump | save, in SI units (the wire stays integer). */
+/* params list | get NAME | set NAME VALUE | dump [FILE] | save, in SI units (the wire stays integer). */
 #include <stdio.h>
 #include <string.h>
 
@@ -59,6 +59,24 @@ static int parse_set(char **argv, param_key *k, int32_t *raw)
     return EXIT_OK;
 }
 
+/* A parameter file's set as a controller would hold it, without a bus: the file read as tse-sim
+ * reads it (param_file_read over the defaults), refused with the reader's message (exit 2). */
+static int dump_file(const char *path)
+{
+    fw_param_set s;
+    fw_params_default(&s);
+    char err[512];
+    if (param_file_read(path, &s, err, sizeof err) != 0) {
+        fprintf(stderr, "tsectl: %s\n", err);
+        return EXIT_USAGE;
+    }
+    char title[320];
+    snprintf(title, sizeof title, "parameters of %.200s as a controller takes them (SI units, each unit in a comment)",
+             path);
+    param_file_dump(stdout, &s, title);
+    return EXIT_OK;
+}
+
 int check_params(int argc, char **argv, int *done)
 {
     if (argc < 1)
@@ -72,8 +90,12 @@ int check_params(int argc, char **argv, int *done)
         *done = 1;
         return EXIT_OK;
     }
+    if (!strcmp(sub, "dump") && argc == 2) {
+        *done = 1;
+        return dump_file(argv[1]);
+    }
     if (!strcmp(sub, "save") || !strcmp(sub, "dump"))
-        return argc > 1 ? usage_error("params", "unexpected argument", argv[1]) : EXIT_OK;
+        return argc > 1 ? usage_error("params", "unexpected argument", argv[argc - 1]) : EXIT_OK;
     if (!strcmp(sub, "get")) {
         if (argc != 2)
             return usage_error("params", "get takes one NAME", argc > 2 ? argv[2] : NULL);

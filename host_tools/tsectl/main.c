@@ -79,6 +79,8 @@ static const char *const params_help =
     "                  Only while disabled or in fault.  A value out of range exits 2 naming its\n"
     "                  unit and range; a set the controller refuses is explained\n"
     "dump              every value as a 'key = value' file (what tse-sim --params and tse-kin read)\n"
+    "dump FILE         no bus: the set parameter file FILE gives, as a controller takes it (FILE read\n"
+    "                  as tse-sim and tse-kin --params read it; a file they refuse exits 2 saying why)\n"
     "save              store the set in the controller's non-volatile memory";
 
 const tsectl_command tsectl_commands[] = {
@@ -109,7 +111,7 @@ const tsectl_command tsectl_commands[] = {
      check_status, run_status, 1},
     {"watch", "watch [--count N]", "Live telemetry: state, plate pose, slides (N STATUS lines, or until Ctrl-C).",
      check_watch, run_watch, 1},
-    {"params", "params list | get NAME | set NAME VALUE | dump | save", params_help, check_params, run_params, 1},
+    {"params", "params list | get NAME | set NAME VALUE | dump [FILE] | save", params_help, check_params, run_params, 1},
     {"trajectory", "trajectory FILE", traj_help, check_trajectory, run_trajectory, 1},
     {"path", "path WAYPOINTS.csv [--blend M] [--period S] [--jerk J|controller] [--dry-run] [--plot FILE.png]",
      path_help, check_path,

@@ -34,9 +34,11 @@ TSE_PY_API const char *tse_py_param_name(int id);
 TSE_PY_API const char *tse_py_param_key(int i, int *id, int *degrees, const char **rule);
 /* The prototype's values (tse_params_default, double build). */
 TSE_PY_API void tse_py_params_default(double v[TSE_PY_NPARAMS]);
-/* tse-kin's parameter file, parsed and validated as tse-kin parses it (kin_params_file.h): 0 with the
- * values in v, -1 (not a valid file) or -2 (unreadable) with tse-kin's message in err. */
-TSE_PY_API int tse_py_params_load(const char *path, double v[TSE_PY_NPARAMS], char *err, size_t errlen);
+/* A parameter file, read and judged as tse-kin reads it (kin_params_file.h): as a controller's set
+ * (design 0, tse-kin --params: exactly the files tse-sim takes) or as a design (design 1, tse-kin
+ * --design): 0 with the values in v, -1 (not a valid file) or -2 (unreadable) with tse-kin's
+ * message in err. */
+TSE_PY_API int tse_py_params_load(const char *path, int design, double v[TSE_PY_NPARAMS], char *err, size_t errlen);
 
 /* The controller's whole-path check of a trajectory, tsectl's (host_tools/traj_check): from rest at
  * pose0[6] (m, rad) with slides q0[6] (m), under the controller's parameter set params[n_params]

@@ -45,13 +45,13 @@ void tse_py_params_default(double v[TSE_PY_NPARAMS])
     memcpy(v, p.v + 1, TSE_PY_NPARAMS * sizeof v[0]);
 }
 
-int tse_py_params_load(const char *path, double v[TSE_PY_NPARAMS], char *err, size_t errlen)
+int tse_py_params_load(const char *path, int design, double v[TSE_PY_NPARAMS], char *err, size_t errlen)
 {
     kin_param_values p;
     kin_params_default(&p);
     if (errlen > 0)
         err[0] = '\0';
-    const kin_params_outcome r = kin_params_load(path, &p, err, errlen);
+    const kin_params_outcome r = kin_params_load(path, design ? KIN_PARAMS_DESIGN : KIN_PARAMS_CONTROLLER, &p, err, errlen);
     if (r == KIN_PARAMS_OK)
         memcpy(v, p.v + 1, TSE_PY_NPARAMS * sizeof v[0]);
     return (int)r;

@@ -39,11 +39,11 @@ def random_poses(n, seed):
     return p
 
 
-def run_cli(cli, command, rows, precision, params_file=None):
+def run_cli(cli, command, rows, precision, params_file=None, design=False):
     text = "".join(",".join("%.17g" % x for x in row) + "\n" for row in rows)
     args = [cli, command, "--precision", precision]
     if params_file:
-        args += ["--params", str(params_file)]
+        args += ["--design" if design else "--params", str(params_file)]
     out = subprocess.run(args, input=text, capture_output=True, text=True, check=True).stdout
     lines = out.splitlines()
     assert len(lines) == len(rows)
@@ -158,23 +158,27 @@ def test_params_keywords_and_file(tmp_path):
     assert p.L == 1.5 and p.eta == math.radians(25) and p.mu_min == 0.1
     f = tmp_path / "design.params"
     f.write_text("# a design\nL = 1.5\neta_deg = 25\nmu_min = 0.1\nslide_vmax = 0.1\n")
-    assert kin.Params.from_file(f) == p
+    assert kin.Params.from_file(f) == p  # as a controller's set (tse-sim takes it)
+    assert kin.Params.from_file(f, design=True) == p
     poses = random_poses(500, 3)
     assert same_bits(kin.ik(poses, params=p).q, kin.ik(poses, params=kin.Params.from_file(f)).q)
+    # A longer design is one too, but no controller's set: the default homing switches (0.2 m) are
+    # out of its reach, and tse-sim refuses it so.
+    f.write_text("L = 2\n")
+    assert kin.Params.from_file(f, design=True) == kin.Params(L=2)
+    with pytest.raises(ValueError, match=r"design.params: home_sw_1 = 0.2 m: the six homing switches"):
+        kin.Params.from_file(f)
 
 
-def test_params_read_a_tsectl_dump(tmp_path):
+def test_params_read_a_tsectl_dump(tmp_path, tsectl):
     """A dump of a set unlike the defaults (tsectl params dump's text, units in comments) reads
     back to that set's kinematic values: each is the wire's micro-unit integer over 1e6."""
-    env = os.environ.get("TSE_PARAM_DUMP")
-    tool = Path(env) if env else Path(__file__).resolve().parents[2] / "build" / "host" / "python" / "tse_py_param_dump"
-    if not tool.exists():
-        pytest.fail(f"{tool} not found: build the host preset, or set TSE_PARAM_DUMP")
     mine = tmp_path / "mine.params"
     mine.write_text("L = 1.5\nk1 = 0.3\neta_deg = 25\nalpha_max = 1.2\ns_max = 0.8\nmu_min = 0.07\n"
                     "slide_vmax = 0.12\ncan_kbps = 250\n")
     dump = tmp_path / "dump.params"
-    dump.write_text(subprocess.run([str(tool), str(mine)], check=True, capture_output=True, text=True).stdout)
+    dump.write_text(subprocess.run([tsectl, "params", "dump", str(mine)], check=True, capture_output=True,
+                                   text=True).stdout)
     assert "L = 1.5   # m\n" in dump.read_text()
     p = kin.Params.from_file(dump)
     # eta_deg = 25 is 436332 urad on the wire (25 pi / 180 = 0.43633231 rad); the others are the
@@ -190,8 +194,8 @@ def test_params_against_tse_kin_params_file(tse_kin_cli, tmp_path):
     f.write_text("L = 1.4\nk1 = 0.3\nalpha_max_deg = 65\nk4 = 0.1\n")
     poses = random_poses(1000, 77)
     for precision in PRECISIONS:
-        r = kin.ik(poses, params=kin.Params.from_file(f), precision=precision)
-        status, _, q = run_cli(tse_kin_cli, "ik", poses, precision, params_file=f)
+        r = kin.ik(poses, params=kin.Params.from_file(f, design=True), precision=precision)
+        status, _, q = run_cli(tse_kin_cli, "ik", poses, precision, params_file=f, design=True)
         assert [str(kin.Status(s)) for s in r.status] == status
         assert same_bits(r.q, q)
 
@@ -245,10 +249,13 @@ def test_params_file_errors(tmp_path):
     f = tmp_path / "bad.params"
     f.write_text("L = 1.5\nk1 = 1.5\n")
     with pytest.raises(ValueError, match=r"bad.params:2: k1 = 1.5 is invalid \(needs 0 < k1 <= 1\)"):
+        kin.Params.from_file(f, design=True)
+    with pytest.raises(ValueError, match=r"bad.params:2: k1 = 1.5 is outside 0.000001..1$"):
         kin.Params.from_file(f)
     f.write_text("L = 1.5\nlength = 2\n")
-    with pytest.raises(ValueError, match=r"bad.params:2: unknown key 'length'"):
-        kin.Params.from_file(f)
+    for design in (False, True):
+        with pytest.raises(ValueError, match=r"bad.params:2: unknown parameter 'length'"):
+            kin.Params.from_file(f, design=design)
     with pytest.raises(OSError, match="cannot open"):
         kin.Params.from_file(tmp_path / "missing.params")
 

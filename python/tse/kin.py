@@ -32,7 +32,7 @@ np = need("numpy", "python3-numpy", "tse.kin")
 
 from . import _native
 
-__all__ = ["Status", "Params", "IKResult", "FKResult", "JacobianResult", "ik", "fk", "jacobian", "haf",
+__all__ = ["Status", "Params", "spellings", "IKResult", "FKResult", "JacobianResult", "ik", "fk", "jacobian", "haf",
            "sigma_z", "workspace", "workspace_points", "library_path"]
 
 library_path = _native.find_library()
@@ -57,7 +57,7 @@ _param_count = _sig("tse_py_param_count", _c_int)
 _param_name = _sig("tse_py_param_name", _c_char_p, _c_int)
 _param_key = _sig("tse_py_param_key", _c_char_p, _c_int, _ip, _ip, ctypes.POINTER(_c_char_p))
 _params_default = _sig("tse_py_params_default", None, _dp)
-_params_load = _sig("tse_py_params_load", _c_int, _c_char_p, _dp, ctypes.c_char_p, ctypes.c_size_t)
+_params_load = _sig("tse_py_params_load", _c_int, _c_char_p, _c_int, _dp, ctypes.c_char_p, ctypes.c_size_t)
 
 _PRECISIONS = {"double": "_d", "float": "_f"}
 _fn = {}
@@ -105,13 +105,20 @@ _KEYS = _keys()  # spelling -> (parameter id, in degrees, rule in that spelling'
 _RULE = {pid: rule for (pid, deg, rule) in _KEYS.values() if not deg}
 
 
+def spellings():
+    """The keys a parameter file and Params take for the kinematic parameters, each with the
+    parameter's SI name and whether its value is in degrees: {"eta_deg": ("eta", True), ...}
+    (the library's table; files take them in any case)."""
+    return {key: (_PARAM_NAMES[pid - 1], deg) for key, (pid, deg, _) in _KEYS.items()}
+
+
 class Params:
     """One TSE design: the kinematic parameters of kinematics.md, in SI units and radians.
 
     Params(**values): the prototype's values (tse_params_default) with the keyword arguments given
     over them, under the names a parameter file uses (L, k1, eta, k3, k4, alpha_min, alpha_max,
     s_min, s_max, mu_min, nu_min; eta_deg, alpha_min_deg, alpha_max_deg in degrees).
-    Params.from_file(path): tse-kin's parameter file, parsed by tse-kin's own parser.
+    Params.from_file(path, design=False): a parameter file as tse-kin --params (or --design) reads it.
     The library validates the set (double build; a float call checks it again after rounding);
     a rejected set raises ValueError naming the parameter and its constraint.
     """
@@ -135,12 +142,15 @@ class Params:
         self._check("double", given)
 
     @classmethod
-    def from_file(cls, path):
-        """tse-kin's parameter file (host_tools/tse_kin/params_file.h): ValueError with tse-kin's
-        message (file and line) for a file it refuses, OSError for one it cannot read."""
+    def from_file(cls, path, design=False):
+        """A parameter file, read by the one reader tse-kin, tse-sim and tsectl share: ValueError with
+        tse-kin's message (file and line) for a file it refuses, OSError for one it cannot read.
+        design=False: the controller's parameter file, judged as tse-sim judges it (tse-kin --params:
+        the same files are taken); design=True: a design to analyse, judged by kinematics.md's
+        rules only (tse-kin --design)."""
         v = (ctypes.c_double * _NPARAMS)()
         err = ctypes.create_string_buffer(1024)
-        r = _params_load(os.fsencode(path), v, err, len(err))
+        r = _params_load(os.fsencode(path), 1 if design else 0, v, err, len(err))
         if r == -2:
             raise OSError(err.value.decode(errors="replace"))
         if r != 0:

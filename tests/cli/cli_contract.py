@@ -344,7 +344,7 @@ same_proto = write("haf_proto.params", "eta_deg = 30   # the default, in degrees
 stroke06 = write("stroke06.params", "s_max = 0.6\n")
 longer = write("haf_long.params", "L = 2\n")
 for path, proto in ((same_proto, True), (stroke06, False), (longer, False)):
-    rc, out, err = run(["haf", "--params", path])
+    rc, out, err = run(["haf", "--design", path])
     last = fields(out.rstrip("\n").split("\n")[-1])
     if proto:
         check(f"haf --params {os.path.basename(path)}: the paper named, as for the prototype",
@@ -355,7 +355,7 @@ for path, proto in ((same_proto, True), (stroke06, False), (longer, False)):
 for args in (["sweep", "k1", "0.2", "0.3", "2", "--grid", "3,3,3"], ["workspace", "--points", "--grid", "3,3,3"]):
     rc, out, err = run(args)
     check(f"{args[0]}: the paper's figures named for the prototype", rc == 0 and "paper" in out and "0.28" in out, out)
-    rc, out, err = run(args + ["--params", stroke06])
+    rc, out, err = run(args + ["--design", stroke06])
     check(f"{args[0]}: not for another design", rc == 0 and "paper" not in out and "11.487" not in out
           and not re.search(r"(?<![\d.])0\.28(?!\d)", out), out)
 
@@ -371,7 +371,7 @@ for prec in ("double", "float"):
           ok and abs(float(last[2]) - int(last[0]) / 100) < 1e-6 and re.fullmatch(r"\d\.\d{6}", last[2])
           and 0 < float(last[3]) < math.pi * PROTO["L"] ** 3 / 4, out)
     check(f"workspace {prec}: the paper's figure is named for the prototype", "paper: 0.28" in out, out)
-    rc, out, err = run(["workspace", "--grid", "5,4,5", "--precision", prec, "--params", stroke06])
+    rc, out, err = run(["workspace", "--grid", "5,4,5", "--precision", prec, "--design", stroke06])
     check(f"workspace {prec}: not for another design",
           rc == 0 and "paper" not in out and not re.search(r"(?<![\d.])0\.28(?!\d)", out), out)
 # The cylinder and the cells, by hand: on a 5,4,5 grid the radii are L/8 apart, the heights L/4, the
@@ -408,7 +408,7 @@ rc, out, err = run(["ik", "--params", tmp], good + "\n")
 check("a directory as params file exits 1", rc == 1 and out == "", f"rc {rc} {err}")
 bad = write("bad.params", "L = 1.7\nk2 = 3\n")
 rc, out, err = run(["ik", "--params", bad], good + "\n")
-check("unknown key exits 1 naming file and line", rc == 1 and f"{bad}:2: unknown key 'k2'" in err, err)
+check("unknown key exits 1 naming file and line", rc == 1 and f"{bad}:2: unknown parameter 'k2'" in err, err)
 bad = write("dup.params", "# d\ns_max = 0.8\ns_max = 0.7\n")
 rc, out, err = run(["workspace", "--params", bad])
 check("duplicate key exits 1 naming the line", rc == 1 and f"{bad}:3:" in err and "twice" in err, err)
@@ -417,29 +417,38 @@ rc, out, err = run(["haf", "--params", bad])
 check("malformed value exits 1 naming the line", rc == 1 and f"{bad}:1:" in err, err)
 bad = write("set.params", "k1 = 0.3\neta_deg = 95\n")
 rc, out, err = run(["ik", "--params", bad], good + "\n")
-check("invalid set exits 1 naming the key's line", rc == 1 and f"{bad}:2: eta_deg" in err, err)
+check("a value outside the controller's range exits 1 naming the line and the range",
+      rc == 1 and f"{bad}:2: eta = 95 deg is outside -89.99998..89.99998 deg" in err, err)
+rc, out, err = run(["ik", "--design", bad], good + "\n")
+check("an invalid design exits 1 naming the key's line", rc == 1 and f"{bad}:2: eta_deg = 95 is invalid" in err, err)
 bad = write("dflt.params", "alpha_min_deg = 75\n")
 rc, out, err = run(["bench", "--params", bad, "--n", "10"])
-check("invalid set through a default names the default value",
+check("a set the controller refuses through a default says the default is in conflict",
+      rc == 1 and "alpha_max is not set in the file: its default is what is in conflict" in err and out == "", err)
+rc, out, err = run(["bench", "--design", bad, "--n", "10"])
+check("an invalid design through a default names the default value",
       rc == 1 and "default value alpha_max = " in err and out == "", err)
-# Valid in double, but L overflows float: the float build refuses it, by name.
+# A design no controller takes (L beyond 10 m, and the default homing switches out of reach) is
+# still a design: valid in double, but L overflows float, which the float build refuses by name.
 big = write("big.params", "L = 1e39\n")
 rc, out, err = run(["ik", "--params", big], good + "\n")
-check("L = 1e39 is a valid double set", rc == 0, f"rc {rc} {err}")
-rc, out, err = run(["ik", "--params", big, "--precision", "float"], good + "\n")
+check("L = 1e39 is no controller's set", rc == 1 and f"{big}:1: L = 1e39 m is outside 0.1..10 m" in err, err)
+rc, out, err = run(["ik", "--design", big], good + "\n")
+check("L = 1e39 is a valid double design", rc == 0, f"rc {rc} {err}")
+rc, out, err = run(["ik", "--design", big, "--precision", "float"], good + "\n")
 check("L = 1e39 in float exits 1 naming line and key", rc == 1 and f"{big}:1: L" in err and "float" in err, err)
-rc, out, err = run(["bench", "--params", big, "--n", "10"])
+rc, out, err = run(["bench", "--design", big, "--n", "10"])
 check("bench refuses a set float cannot hold before timing anything", rc == 1 and out == "", f"rc {rc} {out!r}")
 
 # The values are applied: a stroke below the vertical solution at Z = 1 (s = 0.430 m).
 short = write("short.params", "# shorter stroke\r\ns_max = 0.40   # metres\r\n")
-rc, out, err = run(["ik", "--params", short], good + "\n")
+rc, out, err = run(["ik", "--design", short], good + "\n")
 f = fields(out.strip())
 check("s_max = 0.40 makes (0,0,1) a stroke rejection of scissor 1", rc == 0 and f[:2] == ["stroke", "1"], out)
 # L scales the design; the hand algebra with L = 2 gives the slides at (0, 0, 1).
 longer = write("long.params", "L = 2.0\n")
 for prec in ("double", "float"):
-    rc, out, err = run(["ik", "--params", longer, "--precision", prec], good + "\n")
+    rc, out, err = run(["ik", "--design", longer, "--precision", prec], good + "\n")
     f = fields(out.strip())
     s2 = vertical(1.0, L=2.0)[0]
     check(f"L = 2 {prec}: the slides of the hand algebra", rc == 0 and f[0] == "ok" and
@@ -471,13 +480,16 @@ rc, a, err = run(["ik", "--params", si], sample)
 check("the prototype in SI names (radians) answers exactly as the defaults", rc == 0 and a == b, err)
 # Radians are radians: eta = 30 is refused, not read as degrees.
 bad = write("eta_rad.params", "eta = 30\n")
+rc, out, err = run(["ik", "--design", bad], good + "\n")
+check("eta = 30 (radians) is an invalid design", rc == 1 and f"{bad}:1: eta = 30 is invalid" in err, err)
 rc, out, err = run(["ik", "--params", bad], good + "\n")
-check("eta = 30 (radians) is an invalid set", rc == 1 and f"{bad}:1: eta = 30 is invalid" in err, err)
+check("eta = 30 (radians) is outside the controller's range",
+      rc == 1 and f"{bad}:1: eta = 30 rad is outside -1.570796..1.570796 rad" in err, err)
 # One parameter in both spellings: both lines named.
 both = write("both.params", "alpha_max = 1.2\nL = 1.727\nalpha_max_deg = 69\n")
 rc, out, err = run(["ik", "--params", both], good + "\n")
 check("both spellings of alpha_max exit 1 naming both lines",
-      rc == 1 and f"{both}:3: 'alpha_max_deg' and 'alpha_max' (line 1)" in err and out == "", err)
+      rc == 1 and f"{both}:3: alpha_max_deg given twice (first on line 1 as alpha_max)" in err and out == "", err)
 # The controller's names in SI: checked to be numbers, then ignored.
 ctl = write("ctl.params", "\ufeffL = 1.727\r\nslide_vmax = 0.15\r\nplate_jmax = 10\r\nwatchdog_ms = 500\r\n"
             "home_sw_3 = 0.2\r\ncan_kbps = 500\r\nstep_pulse_ns = 2000\r\n")
@@ -486,7 +498,7 @@ check("a file with a BOM and the controller's names answers as the defaults", rc
 ctl_bad = write("ctl_bad.params", "slide_vmax = 0.15\nwatchdog_ms = half a second\n")
 rc, out, err = run(["ik", "--params", ctl_bad], good + "\n")
 check("a controller name with a non-number exits 1 naming the line",
-      rc == 1 and f"{ctl_bad}:2: value of watchdog_ms is not a finite number" in err, err)
+      rc == 1 and f"{ctl_bad}:2: watchdog_ms: 'half a second' is not one finite number" in err, err)
 # `tse-kin params` writes a file that --params takes unchanged, and that answers as the defaults.
 rc, tpl, err = run(["params"])
 check("params exits 0 writing a template", rc == 0 and err == "" and "\nL = " in tpl, f"rc {rc} {err}")
@@ -554,7 +566,7 @@ for args, name, says in [
         (["sweep", "k1", "0", "1", "3", "4"], "sweep with five arguments", "'4'"),
         (["sweep", "k2", "0", "1", "3"], "sweep of k2", "eta_deg"),
         (["sweep", "slide_vmax", "0", "1", "3"], "sweep of a controller parameter", "controller"),
-        (["sweep", "K1", "0", "1", "3"], "sweep of an unknown key", "'K1'"),
+        (["sweep", "k9", "0", "1", "3"], "sweep of an unknown key", "'k9'"),
         (["sweep", "k1", "a", "1", "3"], "sweep FROM not a number", "FROM"),
         (["sweep", "k1", "0", "inf", "3"], "sweep TO infinite", "TO"),
         (["sweep", "k1", "0", "1", "0"], "sweep of 0 designs", "N"),
@@ -613,7 +625,7 @@ for prec, tol in (("double", 1e-9), ("float", 1e-4)):
         check(f"sweep {prec}: HAF at k1 = {k1:g} is the hand algebra's mean over haf's heights",
               rel(float(r["haf"]), want) < tol, f"{r['haf']} vs {want}")
         f = write(f"sweep_k1_{k1:g}.params", f"k1 = {k1!r}\n")
-        rc2, w, err2 = run(["workspace", "--params", f, "--grid", "5,4,5", "--precision", prec])
+        rc2, w, err2 = run(["workspace", "--design", f, "--grid", "5,4,5", "--precision", prec])
         reach, total = (int(x) for x in w.split("\n")[-2].split(",")[:2])
         check(f"sweep {prec}: workspace at k1 = {k1:g} is tse-kin workspace's fraction, unrounded, and its volume",
               float(r["workspace"]) == reach / total and r["volume_m3"] == w.split("\n")[-2].split(",")[3],

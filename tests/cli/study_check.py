@@ -164,7 +164,7 @@ def texts_of(out):
 
 
 def kin_volume(params, grid):
-    args = [TOOL, "workspace", "--grid", grid] + (["--params", params] if params else [])
+    args = [TOOL, "workspace", "--grid", grid] + (["--design", params] if params else [])
     r = subprocess.run(args, capture_output=True, text=True)
     last = r.stdout.strip().splitlines()[-1].split(",") if r.returncode == 0 and r.stdout.strip() else []
     return float(last[3]) if len(last) == 4 else float("nan")

@@ -110,7 +110,7 @@ for name, over in DESIGNS:
     for prec, tol in TOL.items():
         # profile
         zs = [0.4, 0.8, 1.2, 1.55]
-        rc, out = run(["profile", "--params", path, "--precision", prec, "--z", ",".join(map(str, zs))])
+        rc, out = run(["profile", "--design", path, "--precision", prec, "--z", ",".join(map(str, zs))])
         got = rows(out) if rc == 0 else []
         for z, r in zip(zs, got):
             want = vertical_figures(P, mp.mpf(z))
@@ -127,7 +127,7 @@ for name, over in DESIGNS:
         # margins
         poses = [[rnd.uniform(-0.5, 0.5), rnd.uniform(-0.5, 0.5), rnd.uniform(0.15, 1.7), rnd.uniform(-0.3, 0.3),
                   rnd.uniform(-0.3, 0.3), rnd.uniform(-0.6, 0.6)] for _ in range(25)]
-        rc, out = run(["margins", "--params", path, "--precision", prec],
+        rc, out = run(["margins", "--design", path, "--precision", prec],
                       "".join(",".join(repr(x) for x in p) + "\n" for p in poses))
         lines = out.splitlines()
         compared = 0
@@ -151,7 +151,7 @@ for name, over in DESIGNS:
         check(f"{name} {prec} margins: most poses compared", compared >= 20, f"{compared}")
         # sweep's HAF: sigma_z ratio at haf's default heights
         k1 = over.get("k1", "0.2647")
-        rc, out = run(["sweep", "k1", k1, k1, "1", "--grid", "2,1,2", "--params", path, "--precision", prec])
+        rc, out = run(["sweep", "k1", k1, k1, "1", "--grid", "2,1,2", "--design", path, "--precision", prec])
         r = rows(out)[0] if rc == 0 else {"haf": "nan"}
         ratios = []
         for z in HAF_Z:
@@ -181,11 +181,11 @@ for name, text, L in (("prototype", "", 1.727), ("L = 1.4 m, stroke 0.6 m", "L =
     for _ in range(MC_N):
         r, phi, z = R * math.sqrt(mc.random()), 2 * math.pi * mc.random(), L * mc.random()
         pts.append(f"{r * math.cos(phi)!r},{r * math.sin(phi)!r},{z!r},0,0,0\n")
-    rc, out = run(["ik", "--params", path], "".join(pts))
+    rc, out = run(["ik", "--design", path], "".join(pts))
     p = sum(1 for l in out.splitlines() if l.startswith("ok,")) / MC_N
     est, se = p * cyl, cyl * math.sqrt(p * (1 - p) / MC_N)
     for prec in ("double", "float"):
-        rc, out = run(["workspace", "--params", path, "--grid", MC_GRID, "--precision", prec])
+        rc, out = run(["workspace", "--design", path, "--grid", MC_GRID, "--precision", prec])
         last = out.strip().splitlines()[-1].split(",") if rc == 0 else ["0"] * 4
         vol = float(last[3])
         print(f"volume {name} {prec}: grid {vol:.5f}, Monte Carlo {est:.5f} +- {se:.5f} m^3")

@@ -204,9 +204,12 @@ static void test_refused_values(void **state)
     refused("L", "1e10", "L = 1e10 m is outside 0.1..10 m"); /* beyond int32 too */
     refused("watchdog_ms", "-1", "watchdog_ms = -1 ms is outside 0..60000 ms");
     refused("status_ms", "5", "status_ms = 5 ms is outside 10..10000 ms");
-    /* In degrees, the range is shown in degrees: 1570796 urad is 89.99998 deg, and "90" is the
-     * fewest digits that come back to it. */
-    refused("eta_deg", "100", "eta = 100 deg is outside -90..90 deg");
+    /* In degrees, the range is shown in degrees: 1570796 urad is 89.999981 deg; "90" would come
+     * back to it once rounded, but lies outside as written, so the ends are shown inside. */
+    refused("eta_deg", "100", "eta = 100 deg is outside -89.99998..89.99998 deg");
+    refused("eta_deg", "90", "eta = 90 deg is outside -89.99998..89.99998 deg");
+    refused("k1", "1.0000004", "k1 = 1.0000004 is outside 0.000001..1"); /* 1 ppm once rounded */
+    refused("L", "0.0999996", "L = 0.0999996 m is outside 0.1..10 m");
     refused("can_kbps", "300", "can_kbps = 300 kbit/s is not one of the rates 125, 250, 500, 1000 kbit/s");
     refused("can_kbps", "2000", "can_kbps = 2000 kbit/s is outside 125..1000 kbit/s");
     /* Not one finite number. */
@@ -481,7 +484,7 @@ static void test_dump_round_trip(void **state)
 
     kin_param_values kv;
     kin_params_default(&kv);
-    if (kin_params_load(p, &kv, err, sizeof err) != KIN_PARAMS_OK)
+    if (kin_params_load(p, KIN_PARAMS_CONTROLLER, &kv, err, sizeof err) != KIN_PARAMS_OK)
         fail_msg("tse-kin's reader refused the dump: %s", err);
     static const struct {
         tse_param_id kin;

@@ -50,6 +50,13 @@ typedef enum {
     FP_COUNT
 } fw_param_id;
 
+/* The controller's parameter that carries kinematic parameter id (TSE_PARAM_L ... TSE_PARAM_NU_MIN):
+ * the table keeps the library's order from FP_L, under the library's names. */
+static inline fw_param_id fw_param_of_kin(tse_param_id id)
+{
+    return (fw_param_id)(FP_L + (int)id - (int)TSE_PARAM_L);
+}
+
 /* Once homed, a low switch must be pressed below home_sw_k - this and released above
  * home_sw_k + this (controller.c).  0.5 mm: a mechanical or inductive switch's hysteresis and
  * repeatability (0.1 to 0.3 mm) plus the one-step latch and a step of read-out skew, 640 steps at

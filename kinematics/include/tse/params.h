@@ -37,7 +37,21 @@ typedef enum {
     TSE_PARAM_COUNT
 } tse_param_id;
 
-/* Name of the parameter as in kinematics.md ("L", "k1", "eta", ..., "nu_min"); "?" if unknown. */
+/* The parameters' names as in kinematics.md, written once: tse_param_name, the controller's
+ * parameter table (fw_param_table) and the parameter files' keys all spell them from here. */
+#define TSE_PARAM_NAME_L "L"
+#define TSE_PARAM_NAME_K1 "k1"
+#define TSE_PARAM_NAME_ETA "eta"
+#define TSE_PARAM_NAME_K3 "k3"
+#define TSE_PARAM_NAME_K4 "k4"
+#define TSE_PARAM_NAME_ALPHA_MIN "alpha_min"
+#define TSE_PARAM_NAME_ALPHA_MAX "alpha_max"
+#define TSE_PARAM_NAME_S_MIN "s_min"
+#define TSE_PARAM_NAME_S_MAX "s_max"
+#define TSE_PARAM_NAME_MU_MIN "mu_min"
+#define TSE_PARAM_NAME_NU_MIN "nu_min"
+
+/* Name of the parameter (TSE_PARAM_NAME_*); "?" if unknown. */
 const char *tse_param_name(tse_param_id id);
 
 #define tse_params_default TSE_NS(tse_params_default)

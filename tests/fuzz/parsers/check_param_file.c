@@ -39,23 +39,28 @@ static int ref_lookup(const char *name, size_t len, long double *per_unit)
 
 enum { VALUE_BAD = -1, VALUE_UNSURE = -2 };
 
-/* The wire integer of a value's text, VALUE_BAD, or VALUE_UNSURE when it lies so close to a half
- * that double and exact arithmetic may round it apart. */
+/* The wire integer of a value's text, VALUE_BAD, or VALUE_UNSURE when it lies so close to a half,
+ * or to an end of the range, that double and exact arithmetic may fall on either side.  The rules:
+ * one finite number as text.h's text_number reads it (1e-400 is an underflow, not 0); within the
+ * range as written (before rounding: param_text.h); then rounded to the nearest integer. */
 static int ref_value(int id, long double per_unit, const char *text, size_t len, int32_t *raw)
 {
     double x;
-    if (!ref_number(text, len, &x) || !isfinite(x))
+    if (!ref_finite_number(text, len, &x))
         return VALUE_BAD;
     const long double r = (long double)x * per_unit;
     if (!(fabsl(r) < 4e9L))
         return VALUE_BAD;
+    const long double eps = 1e-15L * (1.0L + fabsl(r));
+    const fw_param_def *d = &fw_param_table[id];
+    if (fabsl(r - d->min) <= eps || fabsl(r - d->max) <= eps)
+        return VALUE_UNSURE;
+    if (r < d->min || r > d->max)
+        return VALUE_BAD;
     const long double frac = fabsl(r - truncl(r));
-    if (fabsl(frac - 0.5L) <= 1e-15L * (1.0L + fabsl(r)))
+    if (fabsl(frac - 0.5L) <= eps)
         return VALUE_UNSURE;
     const long double rounded = roundl(r); /* halves away from zero */
-    const fw_param_def *d = &fw_param_table[id];
-    if (rounded < d->min || rounded > d->max)
-        return VALUE_BAD;
     if (id == FP_CAN_KBPS && rounded != 125 && rounded != 250 && rounded != 500 && rounded != 1000)
         return VALUE_BAD;
     *raw = (int32_t)rounded;

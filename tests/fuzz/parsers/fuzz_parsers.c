@@ -4,7 +4,8 @@
  *  0  one CSV row (csv_parse_fields, at most 1..16 numbers);
  *  1  tse-kin's row loop (stream_rows) over it as stdin, shaped as ik, fk or jacobian;
  *  2  a trajectory file (traj_file_read);
- *  3  a tse-kin parameter file (kin_params_parse_stream), over the defaults or another base;
+ *  3  a tse-kin parameter file (kin_params_parse), over the defaults or another base (opt bit 0),
+ *     as a controller's set or a design (opt bit 1);
  *  4  a controller SI parameter file (param_file_read), over the defaults or another base.
  * Each case (checks.h) compares the parser's answer with the rules of its header read
  * independently (ref_text.h and the case's own reference), checks the promises on an accepted
