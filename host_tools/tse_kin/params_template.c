@@ -57,7 +57,8 @@ void kin_params_write_template(FILE *f)
     const kin_param_key_def *keys;
     const int n = kin_param_keys(&keys);
     fputs("# TSE parameter file (tse-kin params): the prototype's values, docs/kinematics.md.\n"
-          "# 'key = value' lines; '#' starts a comment; a key left out keeps the value shown here.\n"
+          "# 'key = value' lines, keys in any case; '#' starts a comment; a key left out keeps the value\n"
+          "# shown here.\n"
           "# Names without a unit suffix are SI (m, rad, m/s, ratios); a suffix names the unit\n"
           "# (watchdog_ms). Angles may be given in degrees instead, as eta_deg, alpha_min_deg and\n"
           "# alpha_max_deg (one spelling per parameter).\n"
@@ -74,11 +75,15 @@ void kin_params_write_template(FILE *f)
         put_unit(f, k->unit);
         if (!strcmp(k->unit, "rad"))
             fprintf(f, " (%.6g deg)", d.v[k->id] * (180.0 / KIN_PI));
-        fprintf(f, "; %s; valid: %s\n", k->doc, k->rule);
+        const fw_param_def *w = &fw_param_table[fw_param_of_kin(k->id)];
+        const char *unit;
+        const double sc = si_scale(w->unit, &unit);
+        fprintf(f, "; %s; valid: %s; a controller's range %.7g..%.7g\n", k->doc, k->rule, w->min * sc, w->max * sc);
     }
     fputs("\n"
-          "# The controller's other parameters: tse-kin checks that each is a number and ignores it;\n"
-          "# the simulator and the controller use them. Ranges as the controller takes them.\n",
+          "# The controller's other parameters: the simulator and the controller use them; tse-kin\n"
+          "# --params holds them to their ranges and the set to the controller's rules, as tse-sim\n"
+          "# does (--design: only numbers). Ranges as the controller takes them.\n",
           f);
     for (int i = 0; i < FP_COUNT; ++i) {
         const fw_param_def *p = &fw_param_table[i];
