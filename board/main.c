@@ -11,7 +11,7 @@
 
 #include "fw/controller.h"
 #include "fw/limits.h"
-#include "fw/proto_table.h"
+#include "fw/proto_wire.h"
 #include "fw/runtime.h"
 #include "hal_stm32f4/board_io.h"
 #include "hal_stm32f4/bootline.h"

@@ -2,7 +2,7 @@
 """Finds the wire's facts written as literals instead of by their names (issue 27: one source).
 
 STATUS's flag bits, the wire's units and its ranges are named once, in the message table
-(firmware/include/fw/proto_table.h: PROTO_STATUS_*, PROTO_UM_PER_M, ...), and printed into
+(firmware/include/fw/proto_wire.h: PROTO_STATUS_*, PROTO_UM_PER_M, ...), and printed into
 python/tse/_protocol.py by protogen.  Everywhere else they are used by name; a literal is a copy that
 can drift.  This script looks, line by line, in the C of the firmware and the host tools and in the
 Python package (the table's own files and the generated ones excepted) for
@@ -18,8 +18,8 @@ import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-WHERE = ["firmware/src", "host_tools", "python/tse", "planner", "hal"]
-EXEMPT = {"firmware/src/proto_table.c", "python/tse/_protocol.py"}
+WHERE = ["firmware/src", "firmware/doc", "host_tools", "python/tse", "planner", "hal"]
+EXEMPT = {"python/tse/_protocol.py"}
 
 NUM = r"(?:0x[0-9A-Fa-f]+|[0-9]+)\b"
 FLAG = re.compile(r"(?:\bflags\w*|\bfl|\bv\[2\]|\[\"flags\"\])\s*&\s*" + NUM)

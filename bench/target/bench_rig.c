@@ -52,7 +52,7 @@ static int can_send(void *c, const hal_can_frame *f)
 {
     (void)c;
     const uint8_t fn = (uint8_t)(f->id >> PROTO_NODE_BITS);
-    if (fn == proto_table[PM_ACK].function || fn == proto_table[PM_REJECT].function) {
+    if (fn == proto_wire[PM_ACK].function || fn == proto_wire[PM_REJECT].function) {
         answer_frame = *f;
         answered = true;
     }
@@ -214,7 +214,7 @@ uint32_t bench_commit_cost(const bench_commit *bc, char *answer, int *reason, ui
     const bool wrapped = bench_wrapped();
     if (answered) {
         const uint8_t fn = (uint8_t)(answer_frame.id >> PROTO_NODE_BITS);
-        *answer = fn == proto_table[PM_ACK].function ? 'a' : 'r';
+        *answer = fn == proto_wire[PM_ACK].function ? 'a' : 'r';
         *reason = *answer == 'r' ? answer_frame.data[2] : 0;
     }
     bench_mem = rest;

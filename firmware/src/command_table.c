@@ -29,7 +29,7 @@ static const uint8_t allowed[PM_COUNT][FW_STATE_COUNT] = {
 fw_reason fw_command_allowed(proto_msg cmd, fw_state state)
 {
     if ((unsigned)cmd >= PM_COUNT || (unsigned)state >= FW_STATE_COUNT ||
-        proto_table[cmd].dir != PROTO_TO_CONTROLLER)
+        proto_wire[cmd].dir != PROTO_TO_CONTROLLER)
         return FW_REASON_UNKNOWN;
     return (fw_reason)allowed[cmd][state];
 }

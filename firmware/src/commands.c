@@ -1,7 +1,5 @@
 #include "commands.h"
 
-#include <string.h>
-
 #include "adopt.h"
 #include "fw/command_table.h"
 #include "handover.h"
@@ -260,15 +258,21 @@ static void param_save(fw_controller *c, uint8_t function)
     fw_ack(c, function, 0, 0);
 }
 
+/* Whether message m's first field is a sequence number (a command's, echoed in its answer). */
+static bool first_is_seq(proto_msg m)
+{
+    return proto_wire[m].nfields > 0 && proto_wire[m].fields[0].seq;
+}
+
 /* The sequence number of a frame refused by the codec: a field out of range leaves its sequence
  * number the frame's (a u8, never itself out of range), and the host matches the REJECT by it; a
  * frame of another length or an unknown function has none. */
 static uint8_t range_seq(const hal_can_frame *f, uint8_t function, proto_error e)
 {
-    const proto_def *d = proto_lookup(function, PROTO_TO_CONTROLLER);
-    if (e.reason != FW_REASON_RANGE || !d || d->nfields == 0 || strcmp(d->fields[0].name, "seq") != 0)
+    const proto_msg m = proto_find(function, PROTO_TO_CONTROLLER);
+    if (e.reason != FW_REASON_RANGE || m == PM_COUNT || !first_is_seq(m))
         return 0;
-    return f->data[d->fields[0].offset];
+    return f->data[proto_wire[m].fields[0].offset];
 }
 
 
@@ -282,8 +286,8 @@ static bool admit(fw_controller *c, const hal_can_frame *f, taken *t)
     /* Frames for other controllers, and our own kind of traffic from other nodes, are not ours. */
     if (!t->broadcast && node != c->cfg.node)
         return false;
-    if (f->id <= HAL_CAN_MAX_ID && proto_lookup(t->function, PROTO_TO_HOST) != NULL &&
-        proto_lookup(t->function, PROTO_TO_CONTROLLER) == NULL)
+    if (f->id <= HAL_CAN_MAX_ID && proto_find(t->function, PROTO_TO_HOST) != PM_COUNT &&
+        proto_find(t->function, PROTO_TO_CONTROLLER) == PM_COUNT)
         return false;
 
     proto_message *m = &t->m;
@@ -294,8 +298,7 @@ static bool admit(fw_controller *c, const hal_can_frame *f, taken *t)
         fw_reject(c, t->function, range_seq(f, t->function, e), e.reason, e.field, NULL);
         return false;
     }
-    const bool has_seq = proto_table[m->msg].nfields > 0 && strcmp(proto_table[m->msg].fields[0].name, "seq") == 0;
-    t->seq = has_seq ? (uint8_t)m->v[0] : 0;
+    t->seq = first_is_seq(m->msg) ? (uint8_t)m->v[0] : 0;
     if (m->msg == PM_TRAJ_COMMIT) {
         /* A row of a trajectory that has ended is refused as such in every state: its host learns
          * how it ended, and no row of it ever starts or joins another. */

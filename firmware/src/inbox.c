@@ -32,12 +32,12 @@ static proto_msg command_of(const fw_controller *c, const hal_can_frame *f)
     const uint8_t node = (uint8_t)(f->id & PROTO_NODE_MASK);
     if (f->id > HAL_CAN_MAX_ID || (node != c->cfg.node && node != PROTO_BROADCAST))
         return PM_COUNT;
-    const proto_def *d = proto_lookup((uint8_t)(f->id >> PROTO_NODE_BITS), PROTO_TO_CONTROLLER);
-    if (!d || f->len != d->dlc)
+    const proto_msg m = proto_find((uint8_t)(f->id >> PROTO_NODE_BITS), PROTO_TO_CONTROLLER);
+    if (m == PM_COUNT || f->len != proto_wire[m].dlc)
         return PM_COUNT;
-    if (node == PROTO_BROADCAST && d->msg != PM_STOP && d->msg != PM_ESTOP)
+    if (node == PROTO_BROADCAST && m != PM_STOP && m != PM_ESTOP)
         return PM_COUNT;
-    return d->msg;
+    return m;
 }
 
 static bool watch(void *ctx)

@@ -2,7 +2,7 @@
 
 #include <string.h>
 
-#include "fw/proto_table.h"
+#include "fw/proto_wire.h"
 
 /* The STEP pulse against the step interrupt period T = 1e9 / step_hz ns: it must end within the
  * period it rose in (the step generator changes DIR only at a tick, so DIR never changes under a

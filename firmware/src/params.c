@@ -1,94 +1,20 @@
 #include "fw/params.h"
 
-#include "fw/doc.h"
-#include "fw/proto_table.h"
+#include "fw/proto_wire.h"
 #include "fw/types.h"
 #include "fw/joint_path.h"
 #include "tse/ik.h"
-#include "tse/prototype.h"
 
-/* Prototype defaults (paper, section VI; kinematics.md).  The slides: a 200-step motor at 1/64
- * microstepping on a 10 mm lead, 0.78 um per step, fine enough that rounding the six slides to
- * whole steps moves the plate by well under 1e-5 rad; their speed limit keeps the step rate
- * (192 kHz at 0.15 m/s) under the 200 kHz a slide may be stepped at. */
-#define HOME_SW_DOC(k)                                                                             \
-    "where slide " #k "'s homing switch trips: pressed at and below, released above; homing sets "  \
-    "the slide's coordinate at the edge; once homed, a disagreement beyond 0.5 mm is a limit "      \
-    "fault; a change needs homing again"
-
-/* The kinematic parameters' integer units, um, ppm and urad, are millionths of the SI unit; the
- * prototype's values (tse/prototype.h) rounded to them, at compile time. */
-#define MILLIONTHS(x) ((int32_t)((x) * 1e6 + 0.5))
-
-const fw_param_def fw_param_table[FP_COUNT] = {
-    [FP_L] = {TSE_PARAM_NAME_L, "um", 100000, 10000000, MILLIONTHS(TSE_PROTO_L), FW_DOC("total scissor length")},
-    [FP_K1] = {TSE_PARAM_NAME_K1, "ppm", 1, 1000000, MILLIONTHS(TSE_PROTO_K1), FW_DOC("l0 / L")},
-    [FP_ETA] = {TSE_PARAM_NAME_ETA, "urad", -1570796, 1570796, MILLIONTHS(TSE_PROTO_ETA), FW_DOC("slide angle from the local x axis")},
-    [FP_K3] = {TSE_PARAM_NAME_K3, "ppm", 0, 1000000, MILLIONTHS(TSE_PROTO_K3), FW_DOC("r_act / L")},
-    [FP_K4] = {TSE_PARAM_NAME_K4, "ppm", 1, 1000000, MILLIONTHS(TSE_PROTO_K4), FW_DOC("r_top / L")},
-    [FP_ALPHA_MIN] = {TSE_PARAM_NAME_ALPHA_MIN, "urad", 1, 1570796, MILLIONTHS(TSE_PROTO_ALPHA_MIN), FW_DOC("scissor angle stop, low")},
-    [FP_ALPHA_MAX] = {TSE_PARAM_NAME_ALPHA_MAX, "urad", 1, 1570796, MILLIONTHS(TSE_PROTO_ALPHA_MAX), FW_DOC("scissor angle stop, high")},
-    [FP_S_MIN] = {TSE_PARAM_NAME_S_MIN, "um", 0, 5000000, MILLIONTHS(TSE_PROTO_S_MIN), FW_DOC("slide stroke, low end")},
-    [FP_S_MAX] = {TSE_PARAM_NAME_S_MAX, "um", 1, 5000000, MILLIONTHS(TSE_PROTO_S_MAX), FW_DOC("slide stroke, high end")},
-    [FP_MU_MIN] = {TSE_PARAM_NAME_MU_MIN, "ppm", 0, 999999, MILLIONTHS(TSE_PROTO_MU_MIN), FW_DOC("type-1 singularity margin")},
-    [FP_NU_MIN] = {TSE_PARAM_NAME_NU_MIN, "ppm", 0, 999999, MILLIONTHS(TSE_PROTO_NU_MIN), FW_DOC("type-2 singularity margin")},
-    [FP_STEPS_PER_M] = {"steps_per_m", "1/m", 1000, 10000000, 1280000, FW_DOC("slide steps per metre (a change needs homing again)")},
-    [FP_SLIDE_VMAX] = {"slide_vmax", "um/s", 1000, 2000000, 150000, FW_DOC("slide speed limit")},
-    [FP_SLIDE_AMAX] = {"slide_amax", "um/s^2", 1000, 20000000, 1000000, FW_DOC("slide acceleration limit")},
-    [FP_PLATE_VMAX] = {"plate_vmax", "um/s", 1000, 5000000, 300000, FW_DOC("plate speed limit")},
-    [FP_PLATE_AMAX] = {"plate_amax", "um/s^2", 1000, 50000000, 1000000, FW_DOC("plate acceleration limit")},
-    [FP_PLATE_JMAX] = {"plate_jmax", "um/s^3", 1000, 500000000, 10000000, FW_DOC("plate jerk limit")},
-    [FP_PLATE_WMAX] = {"plate_wmax", "urad/s", 1000, 10000000, 500000, FW_DOC("plate angular speed limit")},
-    [FP_PLATE_DWMAX] = {"plate_dwmax", "urad/s^2", 1000, 100000000, 2000000,
-                        FW_DOC("plate angular acceleration limit")},
-    [FP_STEP_RATE_MAX] = {"step_rate_max", "1/s", 1000, 500000, 200000, FW_DOC("step rate limit per slide")},
-    [FP_WATCHDOG_MS] = {"watchdog_ms", "ms", 0, 60000, 500, FW_DOC("host heartbeat timeout (0: off)")},
-    [FP_STATUS_MS] = {"status_ms", "ms", 10, 10000, 100, FW_DOC("STATUS period")},
-    [FP_TELEMETRY_MS] = {"telemetry_ms", "ms", 0, 10000, 50, FW_DOC("SLIDES and FK period (0: off)")},
-    [FP_HOMING_SPEED] = {"homing_speed", "um/s", 100, 500000, 20000,
-                         FW_DOC("homing speed (held to the slide speed limit)")},
-    [FP_HOMING_BACKOFF] = {"homing_backoff", "um", 0, 100000, 2000,
-                           FW_DOC("how far a slide that starts on its switch goes on past the release "
-                           "before seeking the switch")},
-    /* The homing switches: the alpha stop keeps the symmetric pose above s = 0.184 m, so six
-     * slides seeking down together never reach s = 0; 0.2 m is above that.  The slides still go
-     * below the switches in asymmetric poses: a reference, not an end of travel. */
-    [FP_HOME_SW_1] = {"home_sw_1", "um", 0, 5000000, 200000, FW_DOC(HOME_SW_DOC(1))},
-    [FP_HOME_SW_2] = {"home_sw_2", "um", 0, 5000000, 200000, FW_DOC(HOME_SW_DOC(2))},
-    [FP_HOME_SW_3] = {"home_sw_3", "um", 0, 5000000, 200000, FW_DOC(HOME_SW_DOC(3))},
-    [FP_HOME_SW_4] = {"home_sw_4", "um", 0, 5000000, 200000, FW_DOC(HOME_SW_DOC(4))},
-    [FP_HOME_SW_5] = {"home_sw_5", "um", 0, 5000000, 200000, FW_DOC(HOME_SW_DOC(5))},
-    [FP_HOME_SW_6] = {"home_sw_6", "um", 0, 5000000, 200000, FW_DOC(HOME_SW_DOC(6))},
-    /* The Leadshine DM542 (User's Manual V1.0, section 10, Figure 11) asks for a pulse and a low
-     * time of at least 2.5 us each and DIR 5 us ahead of the pulse's edge (docs/board.md).  2.5 us
-     * is also the longest pulse the board's 200 kHz step interrupts allow at step_rate_max's
-     * default 200 kHz (high and low alike in the 5 us between two steps of a slide). */
-    [FP_STEP_PULSE_NS] = {"step_pulse_ns", "ns", 100, 1000000, 2500,
-                          FW_DOC("STEP high time; refused unless the pulse ends within its step interrupt "
-                          "period and leaves a low time at least as long before the same slide's "
-                          "next step")},
-    [FP_DIR_SETUP_NS] = {"dir_setup_ns", "ns", 0, 1000000, 5000,
-                         FW_DOC("DIR stable before a STEP edge (rounded up to whole step interrupts, at "
-                         "least one)")},
-    [FP_CAN_KBPS] = {"can_kbps", "kbit/s", 125, 1000, 500,
-                     FW_DOC("CAN bit rate: 125, 250, 500 or 1000; the board applies it at start-up, so "
-                     "it takes effect after PARAM_SAVE and a restart")},
-    /* The lead is what the host may fall behind by at the start, before the queue has filled: a
-     * row takes about 1 ms on a 500 kbit/s bus, but a host on a general-purpose OS stalls for tens
-     * of milliseconds (scheduling, Python's garbage collector, a loaded machine).  0.2 s covers a
-     * 100 ms stall twice over at the cost of a 0.2 s wait at rest; with rows 20 ms apart it is ten
-     * of the queue's 32 rows, and a queue that fills before it starts the clock anyway. */
-    [FP_TRAJ_LEAD] = {"traj_lead", "us", 0, 10000000, 200000,
-                      FW_DOC("streamed trajectories: the path the controller holds before the clock of the "
-                      "first row starts (or the last row, or a full queue); the plate waits at rest "
-                      "until then. 0.2 s covers host stalls (scheduling, garbage collection) of tens "
-                      "of ms several times over; a row takes about 1 ms on the bus")},
+/* The firmware's part of the parameter table: each parameter's range and default. */
+#define FW_PARAM(id, name, unit, min, max, def, doc) [id] = {min, max, def},
+const fw_param_spec fw_param_specs[FP_COUNT] = {
+#include "fw/params.def"
 };
 
 void fw_params_default(fw_param_set *s)
 {
     for (int i = 0; i < FP_COUNT; ++i)
-        s->v[i] = fw_param_table[i].def;
+        s->v[i] = fw_param_specs[i].def;
 }
 
 void fw_params_kinematics(const fw_param_set *s, tse_params *p)
@@ -109,7 +35,7 @@ void fw_params_kinematics(const fw_param_set *s, tse_params *p)
 
 int fw_param_value_ok(uint16_t id, int32_t value)
 {
-    if (id >= FP_COUNT || value < fw_param_table[id].min || value > fw_param_table[id].max)
+    if (id >= FP_COUNT || value < fw_param_specs[id].min || value > fw_param_specs[id].max)
         return 0;
     if (id == FP_CAN_KBPS)
         return value == 125 || value == 250 || value == 500 || value == 1000;

@@ -12,17 +12,17 @@ static bool field_signed(proto_field_type t)
     return t == PF_I8 || t == PF_I16 || t == PF_I24 || t == PF_I32;
 }
 
-const proto_def *proto_lookup(uint8_t function, proto_direction dir)
+proto_msg proto_find(uint8_t function, proto_direction dir)
 {
     for (int i = 0; i < PM_COUNT; ++i)
-        if (proto_table[i].function == function && proto_table[i].dir == dir)
-            return &proto_table[i];
-    return NULL;
+        if (proto_wire[i].function == function && proto_wire[i].dir == dir)
+            return (proto_msg)i;
+    return PM_COUNT;
 }
 
 uint16_t proto_id(proto_msg msg, uint8_t node)
 {
-    return (uint16_t)((proto_table[msg].function << PROTO_NODE_BITS) | (node & PROTO_NODE_MASK));
+    return (uint16_t)((proto_wire[msg].function << PROTO_NODE_BITS) | (node & PROTO_NODE_MASK));
 }
 
 static void put(uint8_t *p, uint32_t raw, unsigned n)
@@ -48,7 +48,7 @@ int proto_encode(const proto_message *m, hal_can_frame *f)
 {
     if ((unsigned)m->msg >= PM_COUNT || m->node > PROTO_NODE_MASK)
         return -1;
-    const proto_def *d = &proto_table[m->msg];
+    const proto_wire_msg *d = &proto_wire[m->msg];
     for (int i = 0; i < d->nfields; ++i)
         if (m->v[i] < d->fields[i].min || m->v[i] > d->fields[i].max)
             return -1;
@@ -70,7 +70,7 @@ int proto_encode_values(proto_msg msg, uint8_t node, const int32_t *values, hal_
     memset(&m, 0, sizeof m);
     m.msg = msg;
     m.node = node;
-    for (int i = 0; i < proto_table[msg].nfields; ++i)
+    for (int i = 0; i < proto_wire[msg].nfields; ++i)
         /* Each caller's array holds its message's nfields; the analyzer cannot see the table's.
          * NOLINTNEXTLINE(clang-analyzer-core.uninitialized.Assign) */
         m.v[i] = values[i];
@@ -80,22 +80,23 @@ int proto_encode_values(proto_msg msg, uint8_t node, const int32_t *values, hal_
 proto_error proto_decode(const hal_can_frame *f, proto_direction dir, proto_message *m)
 {
     proto_error e = {FW_REASON_NONE, 0};
-    const proto_def *d = f->id <= HAL_CAN_MAX_ID ? proto_lookup((uint8_t)(f->id >> PROTO_NODE_BITS), dir) : NULL;
-    if (d == NULL) {
+    const proto_msg msg = f->id <= HAL_CAN_MAX_ID ? proto_find((uint8_t)(f->id >> PROTO_NODE_BITS), dir) : PM_COUNT;
+    if (msg == PM_COUNT) {
         e.reason = FW_REASON_UNKNOWN;
         return e;
     }
+    const proto_wire_msg *d = &proto_wire[msg];
     if (f->len != d->dlc) {
         e.reason = FW_REASON_BAD_LENGTH;
         return e;
     }
     proto_message out;
     memset(&out, 0, sizeof out);
-    out.msg = d->msg;
+    out.msg = msg;
     out.node = (uint8_t)(f->id & PROTO_NODE_MASK);
     for (int i = 0; i < d->nfields; ++i) {
-        const proto_field *fd = &d->fields[i];
-        const int64_t v = get(&f->data[fd->offset], fd->type);
+        const proto_wire_field *fd = &d->fields[i];
+        const int64_t v = get(&f->data[fd->offset], (proto_field_type)fd->type);
         if (v < fd->min || v > fd->max) {
             e.reason = FW_REASON_RANGE;
             e.field = (uint8_t)i;
@@ -105,20 +106,4 @@ proto_error proto_decode(const hal_can_frame *f, proto_direction dir, proto_mess
     }
     *m = out;
     return e;
-}
-
-const char *proto_enum_name(const proto_enum_entry *table, int32_t value)
-{
-    for (const proto_enum_entry *e = table; e && e->name; ++e)
-        if (e->value == value)
-            return e->name;
-    return "?";
-}
-
-const char *proto_code_words(const proto_code *table, int32_t value)
-{
-    for (const proto_code *c = table; c && c->name; ++c)
-        if (c->value == value)
-            return c->words;
-    return NULL;
 }

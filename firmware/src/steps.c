@@ -1,6 +1,6 @@
 #include "steps.h"
 
-#include "fw/proto_table.h"
+#include "fw/proto_wire.h"
 
 int32_t fw_steps_of(const fw_param_set *p, tse_real s)
 {

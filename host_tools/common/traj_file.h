@@ -32,7 +32,7 @@
 
 #include <stddef.h>
 
-#include "fw/proto_table.h"
+#include "fw/proto_wire.h"
 
 #define TRAJ_FILE_MAX_ROWS 1000000
 

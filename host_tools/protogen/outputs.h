@@ -1,4 +1,4 @@
-/* The documents protogen prints from the message table (firmware/src/proto_table.c).
+/* The documents protogen prints from the message table (fw/proto_table.h).
  * Each writes the whole document to out and returns 0, or reports what could not be printed on
  * stderr and returns -1 (the caller then discards out, so no half document is left). The table is
  * assumed to have passed table_lint. */

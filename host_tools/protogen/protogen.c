@@ -4,9 +4,9 @@
  *   protogen frames [NODE]   sample frames from the codec with their field values (for the test
  *                            that decodes them with a third-party DBC reader)
  *   protogen python          python/tse/_protocol.py (the tables for the client tse.can)
- * The table (firmware/src/proto_table.c) is the single truth; the tests regenerate these outputs
- * and fail when the committed documents differ.  A table the documents cannot describe (see
- * table_lint.h) is reported and nothing is printed. */
+ * The table (fw/proto_table.h, made from firmware/include/fw/proto_messages.def) is the single
+ * truth; the tests regenerate these outputs and fail when the committed documents differ.  A table
+ * the documents cannot describe (see table_lint.h) is reported and nothing is printed. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

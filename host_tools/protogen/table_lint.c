@@ -6,7 +6,7 @@
 
 #include "field_type.h"
 
-static const char *const where_from = "firmware/src/proto_table.c";
+static const char *const where_from = "firmware/include/fw/proto_messages.def";
 
 /* A DBC identifier: a letter or '_', then letters, digits and '_'. */
 static int is_ident(const char *s)

@@ -182,7 +182,7 @@ def test_params_read_a_tsectl_dump(tmp_path, tsectl):
     assert "L = 1.5   # m\n" in dump.read_text()
     p = kin.Params.from_file(dump)
     # eta_deg = 25 is 436332 urad on the wire (25 pi / 180 = 0.43633231 rad); the others are the
-    # controller's defaults (firmware/src/params.c), whose angles are whole microradians.
+    # controller's defaults (firmware/include/fw/params.def), whose angles are whole microradians.
     want = kin.Params(L=1.5, k1=0.3, eta=0.436332, k3=0.0186, k4=0.11765, alpha_min=0.188727, alpha_max=1.2,
                       s_min=0, s_max=0.8, mu_min=0.07, nu_min=0.001)
     for name, value in want.as_dict().items():

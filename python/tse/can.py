@@ -7,7 +7,7 @@
         print(ctl.status())
 
 The frames are packed and read from the protocol's message table as protogen prints it
-(tse/_protocol.py, generated from firmware/src/proto_table.c, with a test that it is current), so
+(tse/_protocol.py, generated from firmware/include/fw/proto_messages.def, with a test that it is current), so
 nothing here restates the wire format.  The exchanges are tsectl's: a command carries the next
 sequence number after the controller's last accepted one (read from STATUS), and is answered by
 exactly one ACK or REJECT; a REJECT raises Rejected, worded as tsectl words it.

@@ -14,7 +14,7 @@
 #include "hal_stm32f4/bxcan_filter.h"
 
 /* The protocol's own definitions: the filter's copies must agree with them. */
-#include "fw/proto_table.h"
+#include "fw/proto_wire.h"
 
 _Static_assert(BXCAN_NODE_BITS == PROTO_NODE_BITS, "node bits");
 _Static_assert(BXCAN_NODE_MASK == PROTO_NODE_MASK, "node mask");

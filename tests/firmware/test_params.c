@@ -35,6 +35,21 @@ static void test_defaults_are_the_prototype(void **state)
     }
 }
 
+/* The firmware's ranges and defaults (fw_param_specs) and the host's table (fw_param_table), both
+ * made from fw/params.def, agree; every parameter has its name, unit and documentation. */
+static void test_specs_are_the_table(void **state)
+{
+    (void)state;
+    for (int i = 0; i < FP_COUNT; ++i) {
+        assert_int_equal(fw_param_specs[i].min, fw_param_table[i].min);
+        assert_int_equal(fw_param_specs[i].max, fw_param_table[i].max);
+        assert_int_equal(fw_param_specs[i].def, fw_param_table[i].def);
+        assert_true(fw_param_table[i].name && fw_param_table[i].name[0]);
+        assert_true(fw_param_table[i].unit && fw_param_table[i].unit[0]);
+        assert_true(fw_param_table[i].doc && fw_param_table[i].doc[0]);
+    }
+}
+
 static void test_set_one(void **state)
 {
     (void)state;
@@ -324,6 +339,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_defaults_are_the_prototype),
+        cmocka_unit_test(test_specs_are_the_table),
         cmocka_unit_test(test_set_one),
         cmocka_unit_test(test_board_parameters),
         cmocka_unit_test(test_judge_rules),

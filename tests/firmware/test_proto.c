@@ -76,6 +76,38 @@ static void test_table_consistent(void **state)
     }
 }
 
+/* The codec's wire table and the host's documentation table, both made from fw/proto_messages.def,
+ * say the same of every message: function code, direction, length, and each field's type, first
+ * byte and range; a field is a sequence number exactly where it is named seq.  The lookups agree. */
+static void test_wire_table_is_the_documented_one(void **state)
+{
+    (void)state;
+    for (int i = 0; i < PM_COUNT; ++i) {
+        const proto_wire_msg *w = &proto_wire[i];
+        const proto_def *d = &proto_table[i];
+        assert_int_equal(w->function, d->function);
+        assert_int_equal(w->dir, d->dir);
+        assert_int_equal(w->dlc, d->dlc);
+        assert_int_equal(w->nfields, d->nfields);
+        assert_true(w->nfields >= 1 && w->nfields <= PROTO_MAX_FIELDS);
+        for (int k = 0; k < d->nfields; ++k) {
+            assert_int_equal(w->fields[k].type, d->fields[k].type);
+            assert_int_equal(w->fields[k].offset, d->fields[k].offset);
+            assert_int_equal(w->fields[k].min, d->fields[k].min);
+            assert_int_equal(w->fields[k].max, d->fields[k].max);
+            assert_int_equal(w->fields[k].seq, strcmp(d->fields[k].name, "seq") == 0);
+        }
+        for (int dir = PROTO_TO_CONTROLLER; dir <= PROTO_TO_HOST; ++dir) {
+            const proto_msg m = proto_find(d->function, (proto_direction)dir);
+            const proto_def *l = proto_lookup(d->function, (proto_direction)dir);
+            assert_int_equal(m, dir == (int)d->dir ? i : PM_COUNT);
+            assert_ptr_equal(l, m == PM_COUNT ? NULL : &proto_table[m]);
+        }
+    }
+    assert_int_equal(proto_find(0x7F, PROTO_TO_CONTROLLER), PM_COUNT);
+    assert_null(proto_lookup(0x7F, PROTO_TO_CONTROLLER));
+}
+
 static int32_t random_in(int32_t lo, int32_t hi)
 {
     const uint64_t span = (uint64_t)((int64_t)hi - lo) + 1u;
@@ -178,6 +210,7 @@ int main(void)
         cmocka_unit_test(test_hand_built_pose), cmocka_unit_test(test_estop_has_priority),
         cmocka_unit_test(test_table_consistent), cmocka_unit_test(test_round_trip_all),
         cmocka_unit_test(test_rejects),          cmocka_unit_test(test_enum_names),
+        cmocka_unit_test(test_wire_table_is_the_documented_one),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -41,7 +41,7 @@ static void expect_one(const proto_def *d, const char *names, const char *words)
     assert_int_equal(lint_one(d), 1);
     assert_non_null(strstr(report, names));
     assert_non_null(strstr(report, words));
-    assert_non_null(strstr(report, "firmware/src/proto_table.c"));
+    assert_non_null(strstr(report, "firmware/include/fw/proto_messages.def"));
 }
 
 static void test_clean(void **state)

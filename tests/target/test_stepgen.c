@@ -119,8 +119,8 @@ static int32_t capacity(bool reversal)
 /* The board's configuration from the parameter defaults. */
 static void board_config(uint32_t *setup, uint32_t *interval)
 {
-    const uint64_t dir_ns = (uint64_t)fw_param_table[FP_DIR_SETUP_NS].def;
-    const uint32_t rate = (uint32_t)fw_param_table[FP_STEP_RATE_MAX].def;
+    const uint64_t dir_ns = (uint64_t)fw_param_specs[FP_DIR_SETUP_NS].def;
+    const uint32_t rate = (uint32_t)fw_param_specs[FP_STEP_RATE_MAX].def;
     *setup = (uint32_t)((dir_ns * STEP_HZ + 999999999u) / 1000000000u);
     if (*setup == 0)
         *setup = 1;

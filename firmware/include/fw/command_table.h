@@ -5,7 +5,7 @@
 #ifndef FW_COMMAND_TABLE_H
 #define FW_COMMAND_TABLE_H
 
-#include "fw/proto_table.h"
+#include "fw/proto_wire.h"
 #include "fw/types.h"
 
 /* FW_REASON_NONE (accepted), FW_REASON_STATE, or FW_REASON_UNKNOWN for a message that is no

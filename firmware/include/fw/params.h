@@ -1,5 +1,6 @@
-/* The controller's parameters: one table (id, name, integer unit, range, default), the raw set the
- * CAN protocol reads and writes, and its conversion into what kinematics and planning use.
+/* The controller's parameters: one table (id, name, integer unit, range, default; written once, in
+ * fw/params.def), the raw set the CAN protocol reads and writes, and its conversion into what
+ * kinematics and planning use.
  *
  * A set is only ever replaced whole: a change is applied to a copy, checked (each value's range,
  * then the kinematic validity of the whole set), and only then adopted. */
@@ -64,6 +65,16 @@ static inline fw_param_id fw_param_of_kin(tse_param_id id)
  * at 1/64), so two or three stalls already show. */
 #define FW_HOME_SW_TOLERANCE_UM 500
 
+/* What the firmware needs of a parameter: its range and default, in its integer unit. */
+typedef struct {
+    int32_t min, max, def;
+} fw_param_spec;
+
+extern const fw_param_spec fw_param_specs[FP_COUNT];
+
+/* The whole table, names, units and documentation with the numbers: the host's (tsectl, protogen,
+ * the parameter files).  It lives in the library tse_fw_doc (firmware/doc/param_table.c), which
+ * host programs get with the firmware's library and the board image does not link. */
 typedef struct {
     const char *name;
     const char *unit; /* of the integer on the wire */
@@ -83,7 +94,8 @@ void fw_params_default(fw_param_set *s);
 void fw_params_kinematics(const fw_param_set *s, tse_params *out);
 
 /* The rules a parameter set can break, one code each: REJECT's `where` for a param_set refusal
- * (proto_param_rules in proto_codes.c words each).  Wire values: append, never renumber. */
+ * (proto_param_rules in firmware/doc/proto_codes.c words each).  Wire values: append, never
+ * renumber. */
 typedef enum {
     FW_RULE_NONE = 0,           /* the set is valid (or, from an older controller: not said) */
     FW_RULE_RANGE = 1,          /* a value outside its range, or a can_kbps not one of the rates */

@@ -1,4 +1,6 @@
-/* Frame codec driven by the message table (fw/proto_table.h).
+/* Frame codec driven by the wire table (fw/proto_wire.h).  The host's documentation table
+ * (fw/proto_table.h) is declared with it for the host's code; the firmware uses none of it, and the
+ * board image, which does not link it (tse_fw_doc), would fail to link if it did.
  *
  * A decoded frame is known good: its function exists and goes the expected way, its length is the
  * table's, and every field is inside the table's range.  Anything else is reported with the reason
@@ -9,6 +11,7 @@
 #include <stdint.h>
 
 #include "fw/proto_table.h"
+#include "fw/proto_wire.h"
 #include "fw/types.h"
 #include "hal/can.h"
 
@@ -23,8 +26,8 @@ typedef struct {
     uint8_t field;    /* offending field index, for FW_REASON_RANGE */
 } proto_error;
 
-/* The table entry of a function code in a direction, or NULL. */
-const proto_def *proto_lookup(uint8_t function, proto_direction dir);
+/* The message of a function code in a direction, or PM_COUNT. */
+proto_msg proto_find(uint8_t function, proto_direction dir);
 
 uint16_t proto_id(proto_msg msg, uint8_t node);
 
@@ -38,11 +41,5 @@ int proto_encode_values(proto_msg msg, uint8_t node, const int32_t *values, hal_
 
 /* Unpacks a frame travelling in direction dir.  m->node is the node of the identifier. */
 proto_error proto_decode(const hal_can_frame *f, proto_direction dir, proto_message *m);
-
-/* Name of a value of an enumeration table, or "?". */
-const char *proto_enum_name(const proto_enum_entry *table, int32_t value);
-
-/* Words of a code of a code table (proto_table.h), or NULL for a value it does not have. */
-const char *proto_code_words(const proto_code *table, int32_t value);
 
 #endif

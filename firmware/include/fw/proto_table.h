@@ -1,79 +1,21 @@
-/* The CAN message table: the single truth about the protocol.
+/* The CAN message table as people read it: the host's documentation table.
  *
- * The codec (proto.c) packs and checks frames from it, host_tools/protogen prints docs/protocol.md
- * and docs/tse.dbc from it, and a test fails when those files differ from what the table says.
+ * Made, like the codec's wire table (fw/proto_wire.h), from the one list of messages
+ * (fw/proto_messages.def), with everything the list says: names, units, scales, the names of
+ * enumerated values and of flag bits, the codes REJECT carries and their words, and the
+ * documentation.  host_tools/protogen prints docs/protocol.md, docs/tse_node1.dbc and
+ * python/tse/_protocol.py from it, and a test fails when those files differ from what it says;
+ * tsectl, tse-sim, tse.can and the tests name what they send and read with it.
  *
- * Identifiers: id = function << 4 | node.  Nodes are 1..15; node 0 addresses every controller
- * (only e-stop and stop honour it).  A lower function code wins arbitration, so e-stop goes first.
- * Integers only, little-endian; every message has one fixed length. */
+ * It lives in the library tse_fw_doc (firmware/doc/), which host programs get with the firmware's
+ * library and the board image does not link: the firmware itself uses the wire table only. */
 #ifndef FW_PROTO_TABLE_H
 #define FW_PROTO_TABLE_H
 
 #include <stdint.h>
 
+#include "fw/proto_wire.h"
 #include "fw/types.h"
-
-#define PROTO_NODE_BITS 4
-#define PROTO_NODE_MASK 0x0Fu
-#define PROTO_BROADCAST 0u
-#define PROTO_MAX_FIELDS 7
-
-/* STATUS's flags, one bit each; proto_status_flags names and documents them (docs/protocol.md,
- * the DBC and the Python tables are written from it). */
-#define PROTO_STATUS_HOMED 0x01u
-#define PROTO_STATUS_DRIVES 0x02u
-#define PROTO_STATUS_ESTOP_IN 0x04u
-#define PROTO_STATUS_SWITCHES_OFF 0x08u
-#define PROTO_STATUS_ERROR_PASSIVE 0x10u
-
-/* TRAJ_COMMIT's flags; proto_traj_flags names and documents them, as proto_status_flags does
- * STATUS's. */
-#define PROTO_TRAJ_LAST 1u  /* the trajectory's last row */
-#define PROTO_TRAJ_FIRST 2u /* its first row: starts it */
-
-/* Trajectory rows a host keeps in flight (sent, their ACK or REJECT not yet read) while it
- * streams, within the queue's free slots: 4 rows are 16 frames, half the board's 32-frame receive
- * ring (hal/stm32f4 can_ring.h), so a burst fits while the controller validates a row; and enough
- * that the bus's and the host's round trip no longer sets the pace (docs/protocol.md). */
-#define PROTO_TRAJ_WINDOW 4
-
-/* REJECT's field for a timing refusal: the slide (1..6) plus this times the slide limit's code
- * (proto_slide_limit_names). */
-#define PROTO_REJECT_LIMIT_STRIDE 16
-
-/* The wire's units, raw counts per SI unit, and its ranges, written once: the table's scales and
- * ranges are made of them, and every conversion between SI and the wire (on the board, in the host
- * tools, and in Python, whose _protocol.py protogen prints them into) is written with them.
- * Parameters travel in the units of the parameter table (fw/params.h), micro-units among them. */
-#define PROTO_UM_PER_M 1000000      /* a pose's x, y, z in um; a parameter's lengths and speeds */
-#define PROTO_URAD_PER_RAD 1000000  /* a pose's angles in urad */
-#define PROTO_NM_PER_M 1000000000   /* SLIDES' slide positions in nm */
-#define PROTO_US_PER_S 1000000      /* TRAJ_COMMIT's dt in us */
-#define PROTO_MS_PER_S 1000         /* MOVE_COMMIT's duration, MOVE_INFO's times in ms */
-#define PROTO_PER_MILLE 1000        /* REJECT's where and MOVE_INFO's demand: thousandths */
-#define PROTO_POS_MAX_UM 4000000    /* a pose's |x|, |y|, |z| at most 4 m */
-#define PROTO_ANGLE_MAX_URAD 3141593 /* a pose's angles within +-pi */
-#define PROTO_DT_MIN_US 1000        /* a trajectory row's dt: 1 ms ... */
-#define PROTO_DT_MAX_US 60000000    /* ... to 60 s */
-/* MOVE_COMMIT's value: at most FW_MOVE_MAX_S in ms for a duration, the same count of um/s (3.6 m/s)
- * for a speed; at least 1. */
-#define PROTO_MOVE_VALUE_MAX (FW_MOVE_MAX_S * PROTO_MS_PER_S)
-
-/* Raw units per SI unit of a pose's coordinate k: x, y, z (0..2) in um, the angles in urad. */
-static inline int32_t proto_pose_units(int k)
-{
-    /* The same count today, of different units: each named for what it counts.
-     * NOLINTNEXTLINE(bugprone-branch-clone) */
-    return k < 3 ? PROTO_UM_PER_M : PROTO_URAD_PER_RAD;
-}
-
-/* A number of the table as text, for its documentation strings. */
-#define PROTO_STR_(x) #x
-#define PROTO_STR(x) PROTO_STR_(x)
-
-typedef enum { PROTO_TO_CONTROLLER, PROTO_TO_HOST } proto_direction;
-
-typedef enum { PF_U8, PF_I8, PF_U16, PF_I16, PF_U24, PF_I24, PF_U32, PF_I32 } proto_field_type;
 
 /* Named values of an enumerated field (for docs and the DBC's VAL_ table). */
 typedef struct {
@@ -108,39 +50,8 @@ typedef struct {
     const char *doc;
 } proto_field;
 
-typedef enum {
-    PM_ESTOP = 0,
-    PM_STOP,
-    PM_REJECT,
-    PM_ACK,
-    PM_HOST_HEARTBEAT,
-    PM_ENABLE,
-    PM_DISABLE,
-    PM_HOME,
-    PM_CLEAR_FAULT,
-    PM_POSE_A,
-    PM_POSE_B,
-    PM_POSE_C,
-    PM_MOVE_COMMIT,
-    PM_TRAJ_COMMIT,
-    PM_PARAM_GET,
-    PM_PARAM_SET,
-    PM_PARAM_SAVE,
-    PM_STATUS,
-    PM_SLIDES_A,
-    PM_SLIDES_B,
-    PM_SLIDES_C,
-    PM_FK_A,
-    PM_FK_B,
-    PM_FK_C,
-    PM_PARAM_VALUE,
-    PM_MOVE_INFO,
-    PM_TRAJ_END,
-    PM_COUNT
-} proto_msg;
-
-/* Fields in the order a row of proto_table.c reads (message, function code, name...); the
- * tightest order would save 8 bytes of flash a row, which the image does not need.
+/* Fields in the order a message of fw/proto_messages.def reads (message, function code, name...);
+ * a host table, its padding of no account.
  * NOLINTNEXTLINE(clang-analyzer-optin.performance.Padding) */
 typedef struct {
     proto_msg msg;
@@ -154,6 +65,12 @@ typedef struct {
 } proto_def;
 
 extern const proto_def proto_table[PM_COUNT];
+
+/* The table entry of a function code in a direction, or NULL. */
+const proto_def *proto_lookup(uint8_t function, proto_direction dir);
+
+/* Name of a value of an enumeration table, or "?". */
+const char *proto_enum_name(const proto_enum_entry *table, int32_t value);
 
 /* Enumerations that travel on the wire (shared with docs and DBC). */
 extern const proto_enum_entry proto_state_names[];
@@ -200,5 +117,8 @@ typedef struct {
     const char *title;
 } proto_code_def;
 extern const proto_code_def proto_code_tables[];
+
+/* Words of a code of a code table, or NULL for a value it does not have. */
+const char *proto_code_words(const proto_code *table, int32_t value);
 
 #endif

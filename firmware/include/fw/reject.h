@@ -23,7 +23,7 @@
 
 #include "fw/move.h"
 #include "fw/params.h"
-#include "fw/proto_table.h"
+#include "fw/proto_wire.h"
 #include "fw/types.h"
 
 /* A timing refusal's field: slide + FW_REJECT_LIMIT * limit (the message table's stride). */

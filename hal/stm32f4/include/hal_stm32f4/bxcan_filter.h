@@ -3,7 +3,7 @@
  * broadcast node 0, and nothing else (extended and remote frames are rejected by the hardware,
  * not by software).
  *
- * Identifiers are function << 4 | node (firmware/include/fw/proto_table.h: PROTO_NODE_BITS,
+ * Identifiers are function << 4 | node (firmware/include/fw/proto_wire.h: PROTO_NODE_BITS,
  * PROTO_NODE_MASK, PROTO_BROADCAST; this layer cannot include the firmware, so the values are
  * repeated below and a test checks that they agree).
  *

@@ -1,6 +1,5 @@
-/* The codes REJECT carries for one reason, with their words (fw/proto_table.h).  A file of their
- * own: the controller sends the codes and never the words, so the board image links none of this
- * text (string literals share a section per file, which the linker keeps or drops whole). */
+/* The codes REJECT carries for one reason, with their words (fw/proto_table.h): the controller
+ * sends the codes and never the words, which only the host's library (tse_fw_doc) carries. */
 #include "fw/move.h"
 #include "fw/params.h"
 #include "fw/proto_table.h"
