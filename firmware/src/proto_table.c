@@ -248,6 +248,12 @@ const proto_def proto_table[PM_COUNT] = {
      {{"magic", PF_U32, 0, 0x45564153, 0x45564153, "", 1.0, 0,
        FW_DOC("0x45564153, the ASCII bytes S, A, V, E in wire order")}},
      FW_DOC("Store the parameter set in non-volatile memory.")},
+    {PM_INFO_GET, 0x12, "INFO_GET", PROTO_TO_CONTROLLER, 1, 1,
+     {{"page", PF_U8, 0, 0, 0, "", 1.0, 0,
+       FW_DOC("what to report: 0, the firmware's version and the controller's rates (INFO); other pages are "
+              "kept for later answers (a board's identity) and refused range until a firmware has them")}},
+     FW_DOC("Ask what the controller is: acknowledged, then answered by the page's message (page 0: INFO). "
+            "Accepted in every state; changes nothing.")},
     {PM_STATUS, 0x20, "STATUS", PROTO_TO_HOST, 8, 7,
      {{"state", PF_U8, 0, 0, FW_STATE_COUNT - 1, "", 1.0, proto_state_names, FW_DOC("controller state")},
       {"fault", PF_U8, 1, 0, FW_FAULT_COUNT - 1, "", 1.0, proto_fault_names, FW_DOC("latched fault")},
@@ -305,4 +311,14 @@ const proto_def proto_table[PM_COUNT] = {
        FW_DOC("rows it took (capped); after an underrun, the row it lacked is the next one")}},
      FW_DOC("Sent once when a trajectory ends: when it ran to its last row (at rest), or the moment a STOP, a "
      "fault or an e-stop ends it (the robot then stops along the path).")},
+    {PM_INFO, 0x29, "INFO", PROTO_TO_HOST, 8, 5,
+     {{"major", PF_U8, 0, 0, 255, "", 1.0, 0, FW_DOC("the firmware's major version")},
+      {"minor", PF_U8, 1, 0, 255, "", 1.0, 0, FW_DOC("its minor version")},
+      {"patch", PF_U8, 2, 0, 255, "", 1.0, 0, FW_DOC("its patch version")},
+      {"step_hz", PF_U24, 3, 1, 16777215, "Hz", 1.0, 0, FW_DOC("the step interrupts per second it runs")},
+      {"segment_hz", PF_U16, 6, 1, 65535, "Hz", 1.0, 0,
+       FW_DOC("the control segments per second it runs (a trajectory's rows and a move are judged over them)")}},
+     FW_DOC("Answer to INFO_GET page 0, after its ACK: what the controller runs, so that a host judges a path "
+            "or a parameter set at the controller's own rates (the slide speed its step generator allows, the "
+            "segments a slide's acceleration is measured over) rather than assumed ones.")},
 };

@@ -126,6 +126,7 @@ typedef enum {
     PM_PARAM_GET,
     PM_PARAM_SET,
     PM_PARAM_SAVE,
+    PM_INFO_GET,
     PM_STATUS,
     PM_SLIDES_A,
     PM_SLIDES_B,
@@ -136,6 +137,7 @@ typedef enum {
     PM_PARAM_VALUE,
     PM_MOVE_INFO,
     PM_TRAJ_END,
+    PM_INFO,
     PM_COUNT
 } proto_msg;
 
