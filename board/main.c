@@ -29,7 +29,8 @@
 #define TSE_BOARD_NODE 1
 #endif
 
-/* The rates fw/limits.h promises the host tools (tsectl judges paths and sets with them). */
+/* The board's rates, the built-in ones (fw/limits.h); the controller reports them in INFO, and
+ * tsectl and tse.can judge its paths and sets at what it reports. */
 #define CONTROL_HZ FW_SEGMENT_HZ
 #define STEP_HZ FW_STEP_HZ
 /* The control tick feeds the watchdog while the thread proves progress (fw_thread_progress: every

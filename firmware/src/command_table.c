@@ -21,6 +21,7 @@ static const uint8_t allowed[PM_COUNT][FW_STATE_COUNT] = {
     [PM_PARAM_GET] = {A, A, A, A, A, A, A, A},
     [PM_PARAM_SET] = {S, A, S, S, S, S, A, A},
     [PM_PARAM_SAVE] = {S, A, S, S, S, S, A, A},
+    [PM_INFO_GET] = {A, A, A, A, A, A, A, A},
 };
 
 #undef A

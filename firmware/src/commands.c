@@ -8,6 +8,7 @@
 #include "send.h"
 #include "state.h"
 #include "traj_rows.h"
+#include "tse_version.h"
 
 /* Sequence numbers wrap at 256: newer means ahead by 1..127. */
 static bool newer(uint8_t seq, uint8_t than)
@@ -214,6 +215,19 @@ static void param_value(fw_controller *c, uint16_t id)
     fw_send(c, PM_PARAM_VALUE, v);
 }
 
+/* INFO: the firmware's version (tse_version.h, from the project's) and the rates this controller
+ * was configured with (fw_config), which the host tools judge its paths and sets at. */
+_Static_assert(TSE_VERSION_MAJOR <= 255, "INFO carries the major version in a byte");
+_Static_assert(TSE_VERSION_MINOR <= 255, "INFO carries the minor version in a byte");
+_Static_assert(TSE_VERSION_PATCH <= 255, "INFO carries the patch version in a byte");
+
+static void info(fw_controller *c)
+{
+    const int32_t v[5] = {TSE_VERSION_MAJOR, TSE_VERSION_MINOR, TSE_VERSION_PATCH, (int32_t)c->cfg.step_hz,
+                          (int32_t)c->cfg.segment_hz};
+    fw_send(c, PM_INFO, v);
+}
+
 static void param_set(fw_controller *c, const proto_message *m, uint8_t function)
 {
     fw_thread *th = &c->th;
@@ -366,6 +380,10 @@ void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
         return;
     case PM_PARAM_SET:
         param_set(c, m, t.function);
+        return;
+    case PM_INFO_GET: /* page 0, the only one the table lets through */
+        fw_ack(c, t.function, 0, 0);
+        info(c);
         return;
     case PM_PARAM_SAVE:
         param_save(c, t.function);

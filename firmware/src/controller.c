@@ -11,9 +11,7 @@
 
 static bool config_runs(const fw_config *cfg)
 {
-    /* Trajectory time is kept in whole microseconds: the segment period must be one. */
-    return cfg->node != 0 && cfg->node <= PROTO_NODE_MASK && cfg->segment_hz != 0 &&
-           1000000u % cfg->segment_hz == 0 && cfg->step_hz % cfg->segment_hz == 0;
+    return cfg->node != 0 && cfg->node <= PROTO_NODE_MASK && fw_rates_run((fw_rates){cfg->step_hz, cfg->segment_hz});
 }
 
 fw_controller *fw_init(fw_controller_mem *mem, const fw_hal *hal, const fw_config *cfg)

@@ -19,6 +19,13 @@ static fw_param_rule pulse_rule(uint32_t pulse_ns, uint32_t step_hz, uint32_t in
     return FW_RULE_NONE;
 }
 
+bool fw_rates_run(fw_rates r)
+{
+    const proto_wire_field *info = proto_wire[PM_INFO].fields; /* major, minor, patch, step_hz, segment_hz */
+    return r.segment_hz != 0 && 1000000u % r.segment_hz == 0 && r.step_hz % r.segment_hz == 0 &&
+           r.step_hz <= (uint32_t)info[3].max && r.segment_hz <= (uint32_t)info[4].max;
+}
+
 uint32_t fw_step_interval_ticks(int32_t rate, uint32_t step_hz)
 {
     if (rate <= 0)

@@ -22,9 +22,10 @@ typedef struct {
  * up exactly. */
 uint32_t traj_dt_us(const traj_row *rows, int i);
 
-/* Checks rows[0..n) from rest at pose0 with slides q0.  Returns 0 when every row passes, 1 when one
- * is refused (r->row, r->why), -1 when the parameter set itself is refused. */
-int traj_check(const fw_param_set *s, const double pose0[6], const double q0[6], const traj_row *rows, int n,
-               traj_check_result *r);
+/* Checks rows[0..n) from rest at pose0 with slides q0, under set s at rates r (traj_checker_start).
+ * Returns 0 when every row passes, 1 when one is refused (r->row, r->why), -1 when the parameter
+ * set itself is refused at those rates. */
+int traj_check(const fw_param_set *s, fw_rates rates, const double pose0[6], const double q0[6], const traj_row *rows,
+               int n, traj_check_result *r);
 
 #endif

@@ -5,9 +5,15 @@
 #include "fw/limits.h"
 #include "fw/reject.h"
 
-int traj_checker_start(traj_checker *c, const fw_param_set *s, const double pose0[6], const double q0[6])
+int traj_limits(const fw_param_set *s, fw_rates r, tse_geometry *g, fw_limits *lim)
 {
-    if (fw_limits_from_params(s, FW_STEP_HZ, FW_SEGMENT_HZ, &c->g, &c->lim) != 0)
+    return fw_rates_run(r) ? fw_limits_from_params(s, r.step_hz, r.segment_hz, g, lim) : -1;
+}
+
+int traj_checker_start(traj_checker *c, const fw_param_set *s, fw_rates r, const double pose0[6],
+                       const double q0[6])
+{
+    if (traj_limits(s, r, &c->g, &c->lim) != 0)
         return -1;
     tse_real pose[6], q[6];
     for (int k = 0; k < 6; ++k) {

@@ -18,12 +18,18 @@
 typedef struct {
     fw_traj t; /* large (the queue): keep the checker off small stacks */
     tse_geometry g;
-    fw_limits lim; /* as the controller derives them at its rates (FW_STEP_HZ, FW_SEGMENT_HZ) */
+    fw_limits lim; /* as the controller derives them at its rates */
 } traj_checker;
 
-/* Starts at rest at pose0 [m, rad] with slides q0 [m] under parameter set s.  Returns 0, or -1
- * when the controller would refuse the set itself. */
-int traj_checker_start(traj_checker *c, const fw_param_set *s, const double pose0[6], const double q0[6]);
+/* The geometry and limits a controller at rates r derives from set s (fw_limits_from_params): 0, or
+ * -1 when it would refuse the set or cannot run at r (fw_rates_run). */
+int traj_limits(const fw_param_set *s, fw_rates r, tse_geometry *g, fw_limits *lim);
+
+/* Starts at rest at pose0 [m, rad] with slides q0 [m] under parameter set s, for a controller
+ * running at rates r (its INFO's; FW_RATES_BUILT_IN offline).  Returns 0, or -1 when that controller
+ * would refuse the set itself (or cannot run at r). */
+int traj_checker_start(traj_checker *c, const fw_param_set *s, fw_rates r, const double pose0[6],
+                       const double q0[6]);
 
 /* The next row, dt_us after the previous one (the first: after the start), pose [m, rad] rounded
  * as the wire rounds it; `last` for the trajectory's last row.  Returns 0, or 1 with the REJECT

@@ -85,7 +85,7 @@ int cmd_bench_plan(const kin_run *run)
         plan_start_slides(m.p, q0);
         traj_check_result chk;
         const double t1 = bench_now_ns();
-        const int verdict = traj_check(&set, wp[0].pose, q0, rows, (int)n_rows, &chk);
+        const int verdict = traj_check(&set, o.rates, wp[0].pose, q0, rows, (int)n_rows, &chk);
         t_check[round] = bench_now_ns() - t1;
         free(m.mem);
         if (verdict != 0) {

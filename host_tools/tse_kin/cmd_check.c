@@ -9,7 +9,10 @@
 #include "fw/proto_table.h"
 #include "reject_text.h"
 #include "traj_check.h"
+#include "traj_checker.h"
 #include "tse/ik.h"
+
+_Static_assert(FW_STEP_HZ == 200000u && FW_SEGMENT_HZ == 1000u, "the help below says the built-in rates");
 
 const char cmd_check_help[] =
     "usage: tse-kin check [--params FILE] TRAJ.csv\n"
@@ -17,7 +20,9 @@ const char cmd_check_help[] =
     "Judges a trajectory file (t,x,y,z,roll,pitch,yaw, as tsectl trajectory reads it) with the\n"
     "controller's own validator, from rest at the file's first row: every row reachable with both\n"
     "singularity margins, the slides within their speed and acceleration limits as the controller\n"
-    "measures them. A refused row is named as tsectl names it:\n"
+    "measures them at the controller's built-in rates (200 kHz step interrupts, 1 kHz control\n"
+    "segments; tsectl trajectory checks at the rates a controller reports in INFO). A refused row is\n"
+    "named as tsectl names it:\n"
     "  FILE:LINE: row N (t = T s) would be refused: rejected: timing: ...\n"
     "with the slide, the limit and by how much; an accepted file gives one line with the peaks.\n"
     "\n"
@@ -44,7 +49,8 @@ int cmd_check(const kin_run *run)
     fw_limits lim;
     tse_ik_result ik;
     traj_check_result chk;
-    if (fw_limits_from_params(&set, FW_STEP_HZ, FW_SEGMENT_HZ, &g, &lim) != 0) {
+    const fw_rates rates = FW_RATES_BUILT_IN;
+    if (traj_limits(&set, rates, &g, &lim) != 0) {
         fprintf(stderr, "tse-kin: %s: the controller would refuse the parameter set itself\n",
                 run->opt->params_path ? run->opt->params_path : "the defaults");
         rc = KIN_EXIT_FILE;
@@ -53,7 +59,7 @@ int cmd_check(const kin_run *run)
                 path, rows[0].line, tse_status_name(ik.status), ik.scissor);
         rc = KIN_EXIT_REFUSED;
     } else {
-        const int c = traj_check(&set, rows[0].p, ik.q, rows, n, &chk);
+        const int c = traj_check(&set, rates, rows[0].p, ik.q, rows, n, &chk);
         if (c != 0) {
             char text[512];
             fprintf(stderr, "tse-kin: %s:%d: row %d (t = %.6g s) would be refused: %s\n", path, rows[chk.row].line,

@@ -6,8 +6,11 @@
 
 #include "commands.h"
 #include "controller_set.h"
+#include "fw/limits.h"
 #include "plan_text.h"
 #include "waypoint_file.h"
+
+_Static_assert(FW_STEP_HZ == 200000u && FW_SEGMENT_HZ == 1000u, "the help below says the built-in rates");
 
 const char cmd_plan_help[] =
     "usage: tse-kin plan [--params FILE] [--blend M] [--period S] [--jerk J|controller] WAYPOINTS.csv\n"
@@ -27,7 +30,9 @@ const char cmd_plan_help[] =
     "every slide within the controller's speed limit (slide_vmax, or the step generator's bound) and\n"
     "acceleration limit (0.95 of slide_amax, as its validator measures rows: more than 0.01 s apart,\n"
     "each row may change a slide's speed by 0.95 slide_amax x 0.01 s). The rows are checked by the\n"
-    "controller's own validator before anything is written.\n"
+    "controller's own validator before anything is written. The limits are those of a controller at\n"
+    "the built-in rates (200 kHz step interrupts, 1 kHz control segments; tsectl path plans at the\n"
+    "rates a controller reports in INFO).\n"
     "\n"
     "The controller bounds no trajectory's jerk (its rows are straight: each changes the speed at once,\n"
     "and the validator judges acceleration over 0.01 s). --jerk J holds each slide's jerk along the\n"

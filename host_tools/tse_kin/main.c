@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "controller_set.h"
+#include "tse_version.h"
 
 enum { CONTROLLER_SET = 2 };
 
@@ -60,6 +61,7 @@ static void print_usage(FILE *f)
 {
     fputs("usage: tse-kin COMMAND [options]\n"
           "       tse-kin COMMAND --help\n"
+          "       tse-kin --version\n"
           "\n"
           "Offline kinematics of the Triple Scissor Extender (docs/kinematics.md). Units: metres, radians.\n"
           "\n"
@@ -158,6 +160,10 @@ int main(int argc, char **argv)
         return KIN_EXIT_USAGE;
     }
     const char *name = argv[1];
+    if (!strcmp(name, "--version")) {
+        printf("tse-kin %s\n", TSE_VERSION);
+        return KIN_EXIT_OK;
+    }
     if (is_help(name) || !strcmp(name, "help")) {
         /* `tse-kin help ik` too, since people type it. */
         const command *c = argc > 2 && !strcmp(name, "help") ? find_command(argv[2]) : NULL;

@@ -1,10 +1,13 @@
 /* tse-sim: the controller firmware on Linux SocketCAN, driving a simulated plant.
  *
  *   tse-sim --iface vcan0 --node N [--params FILE] [--start S] [--fault SPEC]
+ *           [--step-hz HZ] [--segment-hz HZ]
  *   tse-sim --write-params FILE
+ *   tse-sim --version
  *
  * The firmware runs unchanged on hal/posix, in the board's contexts (fw/runtime.h): a tick thread
- * runs the 1 kHz control tick, each followed by its 200 step interrupts against the plant (whose
+ * runs the 1 kHz control tick, each followed by its 200 step interrupts against the plant (other
+ * rates with --step-hz and --segment-hz, as a board built otherwise would run them) (whose
  * clock is the step count, so the simulated physics is exact whatever the scheduler does); the
  * main thread is the controller's thread (frames, planning, validation), waiting on the bus; a
  * late period waits (bounded) until it has taken the frames that came before the period
@@ -39,10 +42,11 @@
 #include "fault_spec.h"
 #include "param_store.h"
 #include "param_text.h"
+#include "tse_version.h"
 
-/* The rates fw/limits.h promises the host tools (tsectl judges paths and sets with them). */
-#define CONTROL_HZ FW_SEGMENT_HZ
-#define STEP_HZ FW_STEP_HZ
+/* The controller's rates: the built-in ones (fw/limits.h) unless --step-hz or --segment-hz say
+ * otherwise; it reports them in INFO, which tsectl and tse.can judge its paths and sets at. */
+static fw_rates rates = FW_RATES_BUILT_IN;
 /* The longest a late control period waits for this thread to take the frames that came before it
  * (hal_posix/ticker.h), in this thread's CPU time: 50 ms, a row's validation many times over even
  * in a VM under TCG (whose threads are charged the time the host takes the VM's CPU away), short
@@ -142,12 +146,12 @@ static void control(void *arg)
     }
     if (s->awaiting_first_step && s->plant.first_after_mark) {
         printf("tse-sim: first step %.3f ms after the command was taken\n",
-               (double)(s->plant.first_after_mark - s->accepted_tick) * 1e3 / STEP_HZ);
+               (double)(s->plant.first_after_mark - s->accepted_tick) * 1e3 / rates.step_hz);
         s->awaiting_first_step = false;
     }
     uint64_t after;
     if (s->plant.pulses && estop_watch_pulse(&s->estop, s->plant.last_pulse_tick, &after))
-        printf("tse-sim: a step %.3f ms after the e-stop\n", (double)after * 1e3 / STEP_HZ);
+        printf("tse-sim: a step %.3f ms after the e-stop\n", (double)after * 1e3 / rates.step_hz);
     const fw_state state = fw_state_of(s->fw);
     const fw_fault fault = fw_fault_of(s->fw);
     if (state != s->last_state || fault != s->last_fault) {
@@ -155,14 +159,14 @@ static void control(void *arg)
             s->awaiting_first_step = true;
             s->accepted_tick = s->plant.tick;
             plant_mark(&s->plant);
-            printf("tse-sim: motion accepted at t = %.3f s\n", (double)s->plant.tick / STEP_HZ);
+            printf("tse-sim: motion accepted at t = %.3f s\n", (double)s->plant.tick / rates.step_hz);
         }
         if (s->last_state == FW_STATE_ESTOP && state != FW_STATE_ESTOP)
             estop_watch_cleared(&s->estop, s->plant.tick);
         if (state == FW_STATE_ESTOP && s->last_state != FW_STATE_ESTOP) {
             estop_watch_taken(&s->estop, s->plant.tick);
             printf("tse-sim: e-stop taken; the last step was %.3f ms before it\n",
-                   (double)(s->plant.tick - s->plant.last_pulse_tick) * 1e3 / STEP_HZ);
+                   (double)(s->plant.tick - s->plant.last_pulse_tick) * 1e3 / rates.step_hz);
         }
         printf("tse-sim: state %s, fault %s\n", name_of(proto_state_names, state), name_of(proto_fault_names, fault));
         if (state == FW_STATE_IDLE && fw_homed_of(s->fw))
@@ -209,7 +213,9 @@ static int usage(const char *why)
     fprintf(stderr,
             "tse-sim: %s\n"
             "usage: tse-sim --iface IFACE --node N [--params FILE] [--start S] [--fault SPEC]\n"
+            "               [--step-hz HZ] [--segment-hz HZ]\n"
             "       tse-sim --write-params FILE\n"
+            "       tse-sim --version\n"
             "  --params FILE        the controller's parameters, as 'name = value' text in SI units\n"
             "                       (m, rad, m/s, ...; or as the name says: _ms, _ns, _kbps, _deg);\n"
             "                       names left out keep their defaults; a file that cannot be read\n"
@@ -220,8 +226,12 @@ static int usage(const char *why)
             "                       as a template and exit (refused if FILE exists)\n"
             "  --start S            slide positions at power-up [m] (default 0.05: below the homing\n"
             "                       switches at 0.2 m, so homing first leaves them)\n"
+            "  --step-hz HZ         step interrupts per second (default %u)\n"
+            "  --segment-hz HZ      control segments per second (default %u): a segment must be whole\n"
+            "                       microseconds and whole step interrupts; the controller reports both\n"
+            "                       in INFO ('tsectl info'), and the host tools judge paths at them\n"
             "%s",
-            why, fault_spec_help);
+            why, FW_STEP_HZ, FW_SEGMENT_HZ, fault_spec_help);
     return 2;
 }
 
@@ -244,6 +254,18 @@ static int write_template(const char *path)
     return 0;
 }
 
+/* A rate option's value: whole hertz, 1 up to 2^32 - 1.  0, or -1. */
+static int rate_of(const char *text, uint32_t *hz)
+{
+    char *end = NULL;
+    errno = 0;
+    const unsigned long long v = strtoull(text, &end, 10);
+    if (!*text || *text == '-' || *end || errno != 0 || v == 0 || v > UINT32_MAX)
+        return -1;
+    *hz = (uint32_t)v;
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     const char *iface = NULL, *params = NULL, *write_params = NULL, *fault = NULL;
@@ -256,6 +278,13 @@ int main(int argc, char **argv)
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             usage("simulated TSE controller on SocketCAN");
             return 0;
+        } else if (!strcmp(argv[i], "--version")) {
+            printf("tse-sim %s\n", TSE_VERSION);
+            return 0;
+        } else if ((!strcmp(argv[i], "--step-hz") || !strcmp(argv[i], "--segment-hz")) && v) {
+            const bool step = !strcmp(argv[i], "--step-hz");
+            if (rate_of(argv[++i], step ? &rates.step_hz : &rates.segment_hz) != 0)
+                return usage(step ? "--step-hz takes whole hertz above 0" : "--segment-hz takes whole hertz above 0");
         } else if (!strcmp(argv[i], "--iface") && v) {
             iface = argv[++i];
         } else if (!strcmp(argv[i], "--node") && v) {
@@ -283,6 +312,15 @@ int main(int argc, char **argv)
     }
     if (write_params)
         return write_template(write_params);
+    if (!fw_rates_run(rates)) {
+        fprintf(stderr,
+                "tse-sim: no controller runs at %u Hz step interrupts and %u Hz control segments: a segment must be "
+                "whole microseconds (segment_hz divides 1000000) and whole step interrupts (segment_hz divides "
+                "step_hz), with step_hz up to %ld and segment_hz up to %ld (INFO's fields)\n",
+                rates.step_hz, rates.segment_hz, (long)proto_table[PM_INFO].fields[3].max,
+                (long)proto_table[PM_INFO].fields[4].max);
+        return usage("bad --step-hz or --segment-hz");
+    }
     if (!iface || node < 0)
         return usage("--iface and --node are needed");
 
@@ -314,11 +352,16 @@ int main(int argc, char **argv)
     }
     drives = hal.stepper;
     hal.stepper.enable = enable_after_step;
-    const fw_config cfg = {(uint8_t)node, CONTROL_HZ, STEP_HZ, await_tick, &ticker};
+    const fw_config cfg = {(uint8_t)node, rates.segment_hz, rates.step_hz, await_tick, &ticker};
     s.fw = fw_init(&s.fw_mem, &hal, &cfg);
     if (!s.fw) {
-        fprintf(stderr, "tse-sim: the controller did not start\n");
-        return 1;
+        /* The node and the rates were checked: not even the default set runs at these rates. */
+        fprintf(stderr,
+                "tse-sim: the controller did not start: not even its default parameters run at %u Hz step "
+                "interrupts and %u Hz control segments (step_pulse_ns must end within a step interrupt and leave as "
+                "long low; dir_setup_ns must leave room for a step within a control segment)\n",
+                rates.step_hz, rates.segment_hz);
+        return 2;
     }
     /* fw_init falls back to the defaults when it cannot adopt the stored set: what depends on the
      * controller's rates (the STEP pulse and DIR set-up against the step interrupts) is judged
@@ -328,7 +371,7 @@ int main(int argc, char **argv)
                 "tse-sim: %s: the controller cannot adopt this set at its %u Hz step interrupts (step_pulse_ns "
                 "must end within one and leave as long low before the next step at step_rate_max; dir_setup_ns "
                 "must leave room for a step within a %u Hz control period)\n",
-                params, STEP_HZ, CONTROL_HZ);
+                params, rates.step_hz, rates.segment_hz);
         return 2;
     }
     if (posix_can_open(&can, iface, (uint8_t)node) != 0) {
@@ -340,12 +383,12 @@ int main(int argc, char **argv)
     const double starts[6] = {start, start, start, start, start, start};
     const fw_param_set *fp = fw_params_of(s.fw);
     stepgen_config sc; /* as the controller derived it from the set it adopted */
-    if (fw_stepgen_config_from_params(fp, STEP_HZ, CONTROL_HZ, &sc) != FW_RULE_NONE) {
+    if (fw_stepgen_config_from_params(fp, rates.step_hz, rates.segment_hz, &sc) != FW_RULE_NONE) {
         fprintf(stderr, "tse-sim: the controller's own parameter set does not derive its step timing\n");
         return 1;
     }
     plant_config pc = {(double)fp->v[FP_STEPS_PER_M], (double)fp->v[FP_SLIDE_VMAX] / PROTO_UM_PER_M,
-                       (double)fp->v[FP_SLIDE_AMAX] / PROTO_UM_PER_M, 0.05, STEP_HZ, sc.min_step_interval,
+                       (double)fp->v[FP_SLIDE_AMAX] / PROTO_UM_PER_M, 0.05, rates.step_hz, sc.min_step_interval,
                        (uint32_t)fp->v[FP_STEP_PULSE_NS], (uint32_t)fp->v[FP_DIR_SETUP_NS], {0}};
     for (int k = 0; k < 6; ++k)
         pc.home_sw[k] = (double)fp->v[FP_HOME_SW_1 + k] / PROTO_UM_PER_M;
@@ -362,11 +405,11 @@ int main(int argc, char **argv)
     sa.sa_handler = on_signal;
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
-    printf("tse-sim: node %ld on %s, %u Hz control, %u Hz steps\n", node, iface, CONTROL_HZ, STEP_HZ);
+    printf("tse-sim: node %ld on %s, %u Hz control, %u Hz steps\n", node, iface, rates.segment_hz, rates.step_hz);
     if (fault)
         printf("tse-sim: injecting faults: %s\n", fault);
     fflush(stdout);
-    const posix_ticker_config tc = {CONTROL_HZ, STEP_HZ, control, step, &s, LATE_WAIT_US, can.fd};
+    const posix_ticker_config tc = {rates.segment_hz, rates.step_hz, control, step, &s, LATE_WAIT_US, can.fd};
     const int rc = posix_ticker_start(&ticker, &tc);
     /* This thread is the controller's: frames as they come, and the periodic frames every
      * millisecond at least.  fw_poll takes every frame the bus holds, so after it the thread has
@@ -385,14 +428,14 @@ int main(int argc, char **argv)
      * plant's clock is the step count, so the simulated motion is exact; only frames in and out
      * were that much later than on a board. */
     printf("tse-sim: stopped after %llu control periods (%.1f s), %llu pulses\n", (unsigned long long)ticker.periods,
-           (double)ticker.periods / CONTROL_HZ, (unsigned long long)s.plant.pulses);
+           (double)ticker.periods / rates.segment_hz, (unsigned long long)s.plant.pulses);
     if (ticker.overruns)
         printf("tse-sim: %llu of them (%.1f%%) ran late: the host scheduled tse-sim up to %.0f ms behind its %u Hz "
                "tick (a busy machine or a VM); they were made up once the frames that came before each were taken "
                "(%llu waited for the controller's thread, %llu of those to the %.0f ms bound), so the simulated motion "
                "is exact and only its CAN frames were that much later than a board's\n",
                (unsigned long long)ticker.overruns, 100.0 * (double)ticker.overruns / (double)ticker.periods,
-               (double)ticker.max_behind * 1000.0 / CONTROL_HZ, CONTROL_HZ, (unsigned long long)ticker.late_waits,
+               (double)ticker.max_behind * 1000.0 / rates.segment_hz, rates.segment_hz, (unsigned long long)ticker.late_waits,
                (unsigned long long)ticker.late_timeouts, LATE_WAIT_US / 1000.0);
     else
         printf("tse-sim: none of them ran late\n");

@@ -71,6 +71,26 @@ int ctl_answer(tlink *l, int function, int seq, proto_message *ack, proto_messag
     return EXIT_TIMEOUT;
 }
 
+int ctl_ask(tlink *l, proto_msg msg, const int32_t *values, proto_msg reply, int key, const char *what,
+            proto_message *out)
+{
+    if (link_send(l, msg, values) != 0) {
+        ctl_error("cannot send on the bus");
+        return EXIT_BUS;
+    }
+    const int rc = ctl_answer(l, proto_table[msg].function, -1, NULL, out);
+    if (rc != EXIT_OK)
+        return rc;
+    const uint64_t end = link_now_us() + (uint64_t)tsectl_timeout_ms * 1000u;
+    while (link_now_us() < end && !tsectl_interrupted)
+        if (link_recv(l, out, 50) == 1 && out->msg == reply && (key < 0 || out->v[0] == key))
+            return EXIT_OK;
+    if (tsectl_interrupted)
+        return EXIT_INTERRUPTED;
+    ctl_error("no %s from node %u after its %s was acknowledged", what, l->node, proto_table[msg].name);
+    return EXIT_TIMEOUT;
+}
+
 int ctl_send_pose(tlink *l, int seq, const double p[6])
 {
     for (int k = 0; k < 3; ++k) {

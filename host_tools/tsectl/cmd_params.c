@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "ctl_info.h"
 #include "ctl_params.h"
 #include "param_text.h"
 
@@ -36,16 +37,33 @@ static void list(void)
            param_speed_limit_words(&d, speed, sizeof speed));
 }
 
-/* After a value of the speed limit's parameters, the limit it gives with the controller's others,
- * as a comment line (the output stays a parameter file). */
+static bool built_in(fw_rates r)
+{
+    return r.step_hz == FW_STEP_HZ && r.segment_hz == FW_SEGMENT_HZ;
+}
+
+/* After a value of the speed limit's parameters, the limit it gives with the controller's others
+ * at its rates, as a comment line (the output stays a parameter file).  param_speed_limit_words
+ * works at the built-in rates: a controller at others gets the figure alone. */
 static void speed_note(tlink *l, int id, int32_t raw)
 {
     fw_param_set s;
-    if (!param_sets_speed_limit(id) || ctl_params_read(l, &s) != EXIT_OK)
+    fw_rates r;
+    if (!param_sets_speed_limit(id) || ctl_params_read(l, &s) != EXIT_OK || ctl_rates(l, &r) != EXIT_OK)
         return;
     s.v[id] = raw;
     char speed[512];
-    printf("# %s\n", param_speed_limit_words(&s, speed, sizeof speed));
+    fw_speed_limit v;
+    if (built_in(r))
+        printf("# %s\n", param_speed_limit_words(&s, speed, sizeof speed));
+    else if (fw_speed_limit_from_params(&s, r.step_hz, r.segment_hz, &v) != 0)
+        printf("# slide speed limit in effect: none (node %u's step generator cannot run this set at its %u Hz "
+               "step interrupts and %u Hz control segments)\n",
+               l->node, r.step_hz, r.segment_hz);
+    else
+        printf("# slide speed limit in effect: %.4g m/s, %s, at node %u's %u Hz step interrupts and %u Hz control "
+               "segments\n",
+               (double)v.vmax, proto_slide_limits[v.by].name, l->node, r.step_hz, r.segment_hz);
 }
 
 /* Checks NAME and VALUE of a set before anything is sent. */
@@ -112,18 +130,28 @@ int check_params(int argc, char **argv, int *done)
 }
 
 /* A PARAM_SET refused for the whole set: the rule the controller named, with its values and the
- * controller's others.  From a controller that names no rule, tsectl's own judgement, if any. */
+ * controller's others.  From a controller that names no rule, tsectl's own judgement at its rates,
+ * if any.  param_explain_fault words the step generator's timing at the built-in rates: for a
+ * controller at others, those rules are named with its rates instead. */
 static void explain_set(tlink *l, int id, int32_t raw, const proto_message *rej)
 {
     fw_param_set s;
-    if (ctl_params_read(l, &s) != EXIT_OK)
+    fw_rates r;
+    if (ctl_params_read(l, &s) != EXIT_OK || ctl_rates(l, &r) != EXIT_OK)
         return;
     s.v[id] = raw;
     fw_param_fault f = {id, (fw_param_rule)rej->v[6]};
     if (f.rule == FW_RULE_NONE)
-        f = fw_params_judge_config(&s, FW_STEP_HZ, FW_SEGMENT_HZ);
+        f = fw_params_judge_config(&s, r.step_hz, r.segment_hz);
     if (f.rule == FW_RULE_NONE)
         return;
+    const bool timing = f.rule == FW_RULE_PULSE_PERIOD || f.rule == FW_RULE_PULSE_LOW ||
+                        f.rule == FW_RULE_DIR_SETUP_ROOM || f.rule == FW_RULE_CONFIG;
+    if (timing && !built_in(r)) {
+        ctl_error("why: %s, against node %u's %u Hz step interrupts and %u Hz control segments",
+                  proto_param_rules[f.rule].words, l->node, r.step_hz, r.segment_hz);
+        return;
+    }
     char why[512];
     param_explain_fault(&s, f, why, sizeof why);
     ctl_error("why: %s", why);

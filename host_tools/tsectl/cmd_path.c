@@ -1,5 +1,5 @@
 /* path WAYPOINTS.csv: a path planned through waypoints against the controller's own parameters
- * and from where it is (the planner of tse-kin plan), then streamed as `trajectory` streams a file
+ * and rates and from where it is (the planner of tse-kin plan), then streamed as `trajectory` streams a file
  * (checked whole first; STOP on a refusal or Ctrl-C).  --dry-run plans and prints, sending nothing;
  * --plot FILE.png draws the plan first (path_plot.h). */
 #include <math.h>
@@ -136,17 +136,19 @@ int run_path(tlink *l, int argc, char **argv)
         const int skip = from_here(rows, n, s.tel.pose, wp);
         const plan_waypoint *first = wp + skip;
         const int count = n + 1 - skip;
+        a.o.rates = s.rates;
         if (plan_text_make(&s.set, first, count, &a.o, a.path, &m, err, sizeof err) != 0) {
             ctl_error("%s; nothing was sent", err);
             rc = EXIT_REJECTED;
-        } else if (a.png && path_plot(m.p, &s.set, a.png, err, sizeof err) != 0) {
+        } else if (a.png && path_plot(m.p, &s.set, s.rates, a.png, err, sizeof err) != 0) {
             ctl_error("%s; nothing was sent", err);
             rc = EXIT_USAGE;
         } else if (a.dry_run) {
             plan_stats st;
             plan_measure(m.p, &st);
-            printf("# %s planned from node %u's pose and parameters: %.3f s, %ld rows\n", a.path, l->node,
-                   plan_duration(m.p), plan_row_count(m.p));
+            printf("# %s planned from node %u's pose and parameters at its %u Hz step interrupts and %u Hz control "
+                   "segments: %.3f s, %ld rows\n",
+                   a.path, l->node, s.rates.step_hz, s.rates.segment_hz, plan_duration(m.p), plan_row_count(m.p));
             plan_print_stats(stdout, "# ", &st);
             plan_write_rows(stdout, m.p);
         } else if (!(out = malloc((size_t)plan_row_count(m.p) * sizeof *out))) {

@@ -1,11 +1,14 @@
-/* status [--json]: one STATUS with the pose and slides; watch [--count N]: live telemetry. */
+/* status [--json]: one STATUS with the pose and slides; watch [--count N]: live telemetry; info
+ * [--json]: the firmware's version and the controller's rates. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "commands.h"
+#include "ctl_info.h"
 #include "telemetry.h"
+#include "tse_version.h"
 
 static void print_status(const proto_message *m, const telemetry *t, int json)
 {
@@ -46,11 +49,11 @@ static void print_status(const proto_message *m, const telemetry *t, int json)
                t->slides[4], t->slides[5]);
 }
 
-int check_status(int argc, char **argv, int *done)
+int check_json(int argc, char **argv, int *done)
 {
     (void)done;
     if (argc > 1 || (argc == 1 && strcmp(argv[0], "--json") != 0))
-        return usage_error("status", "unexpected argument", argv[argc > 1 && !strcmp(argv[0], "--json") ? 1 : 0]);
+        return usage_error(NULL, "unexpected argument", argv[argc > 1 && !strcmp(argv[0], "--json") ? 1 : 0]);
     return EXIT_OK;
 }
 
@@ -111,5 +114,26 @@ int run_watch(tlink *l, int argc, char **argv)
         }
         fflush(stdout);
     }
+    return EXIT_OK;
+}
+
+int run_info(tlink *l, int argc, char **argv)
+{
+    (void)argv;
+    ctl_info info;
+    bool older;
+    const int rc = ctl_info_read(l, &info, &older);
+    if (older)
+        ctl_error("node %u does not know INFO_GET: a firmware older than INFO, which ran at the built-in rates "
+                  "(%u Hz step interrupts, %u Hz control segments)",
+                  l->node, FW_STEP_HZ, FW_SEGMENT_HZ);
+    if (rc != EXIT_OK)
+        return rc;
+    if (argc > 0)
+        printf("{\"version\": \"%d.%d.%d\", \"step_hz\": %u, \"segment_hz\": %u}\n", info.major, info.minor,
+               info.patch, info.rates.step_hz, info.rates.segment_hz);
+    else
+        printf("node %u: firmware %d.%d.%d, %u Hz step interrupts, %u Hz control segments (tsectl %s)\n", l->node,
+               info.major, info.minor, info.patch, info.rates.step_hz, info.rates.segment_hz, TSE_VERSION);
     return EXIT_OK;
 }

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "commands.h"
+#include "ctl_info.h"
 #include "ctl_params.h"
 #include "progress.h"
 #include "reject_text.h"
@@ -304,7 +305,9 @@ int traj_prepare(tlink *l, bool need_ready, traj_session *s)
                                                                            : "wait for the running motion to end");
         return EXIT_REJECTED;
     }
-    const int rc = ctl_params_read(l, &s->set);
+    int rc = ctl_params_read(l, &s->set);
+    if (rc == EXIT_OK)
+        rc = ctl_rates(l, &s->rates);
     if (rc != EXIT_OK)
         return rc; /* reported */
     s->have_start = start_point(l, &s->tel) == 0;
@@ -321,9 +324,9 @@ int traj_send(tlink *l, const traj_session *s, const char *path, const traj_row 
                   l->node);
         return stream(l, path, rows, n, s->seq, (int)s->st.v[4]);
     }
-    const int c = traj_check(&s->set, s->tel.pose, s->tel.slides, rows, n, &chk);
+    const int c = traj_check(&s->set, s->rates, s->tel.pose, s->tel.slides, rows, n, &chk);
     if (c < 0) {
-        ctl_error("node %u's parameters give no valid geometry (a firmware mismatch?)", l->node);
+        ctl_error("node %u's parameters give no valid geometry at its rates (a firmware mismatch?)", l->node);
         return EXIT_REJECTED;
     }
     if (c > 0) {

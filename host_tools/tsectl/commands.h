@@ -34,8 +34,9 @@ int run_heartbeat(tlink *l, int argc, char **argv);
 int check_move(int argc, char **argv, int *done);
 int run_move(tlink *l, int argc, char **argv);
 
-int check_status(int argc, char **argv, int *done);
+int check_json(int argc, char **argv, int *done); /* optional --json only */
 int run_status(tlink *l, int argc, char **argv);
+int run_info(tlink *l, int argc, char **argv);
 int check_watch(int argc, char **argv, int *done);
 int run_watch(tlink *l, int argc, char **argv);
 

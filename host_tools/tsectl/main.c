@@ -13,6 +13,8 @@
 #include <string.h>
 
 #include "commands.h"
+#include "fw/limits.h"
+#include "tse_version.h"
 
 static void on_signal(int s)
 {
@@ -24,6 +26,8 @@ static void on_signal(int s)
 
 #define TEXT_OF(x) #x
 #define TEXT(x) TEXT_OF(x)
+
+_Static_assert(FW_STEP_HZ == 200000u && FW_SEGMENT_HZ == 1000u, "info's help says the built-in rates");
 
 static const char *const traj_help =
     "Streams a timed path with flow control.  FILE is CSV: rows t,x,y,z,roll,pitch,yaw (seconds,\n"
@@ -41,35 +45,35 @@ static const char *const traj_help =
     "acceleration over 10 ms, so a row may change a slide's speed by about slide_amax x 10 ms (1 cm/s\n"
     "with the defaults).  Sample a smooth path 10 to 50 ms apart.\n"
     "\n"
-    "Before sending, tsectl reads the controller's parameters, pose and slides and checks the whole\n"
-    "file with the controller's own validator: a row that would be refused exits 3 naming FILE:LINE,\n"
-    "which limit and by how much, and nothing is sent.  Rows then stream with up to "
-    TEXT(PROTO_TRAJ_WINDOW) " in flight within\n"
-    "the room the controller reports, keeping its queue ahead; the rows/s reached is printed.  If a\n"
-    "row is still refused while streaming, or you press Ctrl-C, tsectl sends STOP, waits until the\n"
-    "robot is at rest, and exits 3 (130 for Ctrl-C or SIGTERM) naming the row: never part of a path\n"
-    "left running.  A second Ctrl-C while it waits for rest sends ESTOP.  If the controller ends the\n"
-    "trajectory itself (a STOP tsectl did not send, a fault, an underrun: the host fell behind, and\n"
-    "the refusal of the late row says by how many ms; an e-stop), tsectl names which and the row,\n"
-    "waits until the robot is at rest and exits 3.";
+    "Before sending, tsectl reads the controller's parameters, rates ('tsectl info'), pose and slides\n"
+    "and checks the whole file with the controller's own validator at those rates: a row that would\n"
+    "be refused exits 3 naming FILE:LINE, which limit and by how much, and nothing is sent.  Rows\n"
+    "then stream with up to " TEXT(PROTO_TRAJ_WINDOW) " in flight within the room the controller reports, keeping\n"
+    "its queue ahead; the rows/s reached is printed.  If a row is still refused while streaming, or\n"
+    "you press Ctrl-C, tsectl sends STOP, waits until the robot is at rest, and exits 3 (130 for\n"
+    "Ctrl-C or SIGTERM) naming the row: never part of a path left running.  A second Ctrl-C while\n"
+    "it waits for rest sends ESTOP.  If the controller ends the trajectory itself (a STOP tsectl did\n"
+    "not send, a fault, an underrun: the host fell behind, and the refusal of the late row says by\n"
+    "how many ms; an e-stop), tsectl names which and the row, waits until the robot is at rest and\n"
+    "exits 3.";
 
 static const char *const path_help =
     "Plans a path through the waypoints from where the plate is, against the controller's own\n"
-    "parameters (read first), as fast as its slides allow, and streams it as 'trajectory' does:\n"
-    "checked whole by the controller's validator first, STOP on a refusal or Ctrl-C.  WAYPOINTS.csv\n"
-    "is rows x,y,z,roll,pitch,yaw (metres, radians; '#' lines and blank lines skipped); a header may\n"
-    "name the columns in any order and add t (the time a waypoint is passed, seconds from the start;\n"
-    "empty where free) and v (the plate's speed from there on at most, m/s).  A bad row exits 2\n"
-    "naming FILE:LINE.  The path goes from the plate's pose to the first waypoint (unless it is\n"
-    "there), then through every waypoint on a smooth curve, or with --blend M along straight pieces\n"
-    "whose corners it cuts by at most M metres; rows are --period apart (default 0.02 s).  --jerk J\n"
-    "holds each slide's jerk to J m/s^3 as well ('controller': the limit its own moves keep to; the\n"
-    "controller bounds no trajectory's jerk, so there is none by default; tse-kin plan --help).  A\n"
-    "waypoint outside the workspace, or a path leaving it between two, exits 3 naming it, and\n"
-    "nothing is sent.  --dry-run prints the plan's duration and how near each limit it runs, then\n"
+    "parameters and rates (read first), as fast as its slides allow, and streams it as 'trajectory'\n"
+    "does: checked whole by the controller's validator first, STOP on a refusal or Ctrl-C.\n"
+    "WAYPOINTS.csv is rows x,y,z,roll,pitch,yaw (metres, radians; '#' lines and blank lines skipped);\n"
+    "a header may name the columns in any order and add t (the time a waypoint is passed, seconds\n"
+    "from the start; empty where free) and v (the plate's speed from there on at most, m/s).  A bad\n"
+    "row exits 2 naming FILE:LINE.  The path goes from the plate's pose to the first waypoint (unless\n"
+    "it is there), then through every waypoint on a smooth curve, or with --blend M along straight\n"
+    "pieces whose corners it cuts by at most M metres; rows are --period apart (default 0.02 s).\n"
+    "--jerk J holds each slide's jerk to J m/s^3 as well ('controller': the limit its own moves keep\n"
+    "to; the controller bounds no trajectory's jerk, so there is none by default; tse-kin plan\n"
+    "--help).  A waypoint outside the workspace, or a path leaving it between two, exits 3 naming it,\n"
+    "and nothing is sent.  --dry-run prints the plan's duration and how near each limit it runs, then\n"
     "its rows (a file 'tsectl trajectory' takes), and sends nothing (tse-kin plan plans offline).\n"
-    "--plot FILE.png draws the plan before sending: the plate's path from above, its height, and\n"
-    "each slide's speed row by row against the limit (python3-matplotlib).";
+    "--plot FILE.png draws the plan before sending: the plate's path from above, its height, and each\n"
+    "slide's speed row by row against the limit (python3-matplotlib).";
 
 static const char *const params_help =
     "list              the parameters with their defaults, SI units, ranges and meaning (no bus)\n"
@@ -108,7 +112,15 @@ const tsectl_command tsectl_commands[] = {
      "a second Ctrl-C meanwhile sends ESTOP.",
      check_move, run_move, 1},
     {"status", "status [--json]", "One STATUS: state, fault, homing, drives, queue, and the plate pose and slides.",
-     check_status, run_status, 1},
+     check_json, run_status, 1},
+    {"info", "info [--json]",
+     "What the controller is (INFO): its firmware's version and the rates it runs at, step interrupts and\n"
+     "control segments per second.  tsectl reads these before it judges anything by them (a trajectory or\n"
+     "a path checked before sending, a parameter set explained); a controller whose firmware is older\n"
+     "than INFO answers INFO_GET 'unknown': 'info' then exits 3, the others judge at the built-in rates\n"
+     "(200000 Hz step interrupts, 1000 Hz control segments), which every such firmware ran at, and say\n"
+     "so.",
+     check_json, run_info, 1},
     {"watch", "watch [--count N]", "Live telemetry: state, plate pose, slides (N STATUS lines, or until Ctrl-C).",
      check_watch, run_watch, 1},
     {"params", "params list | get NAME | set NAME VALUE | dump [FILE] | save", params_help, check_params, run_params, 1},
@@ -127,7 +139,8 @@ static const tsectl_command *current;
 static void usage(FILE *f)
 {
     fprintf(f, "usage: tsectl --iface IF --node N [--timeout MS] COMMAND [args]\n"
-               "       tsectl COMMAND --help\n\ncommands:\n");
+               "       tsectl COMMAND --help\n"
+               "       tsectl --version\n\ncommands:\n");
     for (int i = 0; i < tsectl_command_count; ++i)
         fprintf(f, "  %s\n", tsectl_commands[i].synopsis);
     fprintf(f, "\n--iface IF    SocketCAN interface (vcan0, can0)\n"
@@ -167,6 +180,9 @@ int main(int argc, char **argv)
         char *end;
         if (is_help(argv[i]) && strcmp(argv[i], "help") != 0) {
             usage(stdout);
+            return EXIT_OK;
+        } else if (!strcmp(argv[i], "--version")) {
+            printf("tsectl %s\n", TSE_VERSION);
             return EXIT_OK;
         } else if (!strcmp(argv[i], "--iface")) {
             if (i + 1 >= argc)

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "fw/limits.h"
+#include "traj_checker.h"
 #include "tse/ik.h"
 
 /* Debian's interpreter: the one python3-matplotlib installs into. */
@@ -38,7 +39,7 @@ static const char script[] =
     "fig.savefig(sys.argv[1], dpi=100)\n";
 
 /* Runs python3 -c prog [arg] with text on its stdin (NULL: none).  Returns its exit status, or -1. */
-static int run_python(const char *prog, const char *arg, const plan *p, const fw_param_set *s, char *err,
+static int run_python(const char *prog, const char *arg, const plan *p, const fw_param_set *s, fw_rates r, char *err,
                       size_t errlen)
 {
     int fd[2];
@@ -66,7 +67,7 @@ static int run_python(const char *prog, const char *arg, const plan *p, const fw
         tse_geometry g;
         fw_limits lim;
         double q[6], prev_q[6], prev_t = 0.0;
-        fw_limits_from_params(s, FW_STEP_HZ, FW_SEGMENT_HZ, &g, &lim);
+        traj_limits(s, r, &g, &lim);
         plan_start_slides(p, q);
         memcpy(prev_q, q, sizeof q);
         fprintf(f, "%.9g\n", (double)lim.slide_vmax);
@@ -98,7 +99,7 @@ static int run_python(const char *prog, const char *arg, const plan *p, const fw
 
 int path_plot_available(char *err, size_t errlen)
 {
-    if (access(PLOT_PYTHON, X_OK) != 0 || run_python("import matplotlib", NULL, NULL, NULL, err, errlen) != 0) {
+    if (access(PLOT_PYTHON, X_OK) != 0 || run_python("import matplotlib", NULL, NULL, NULL, FW_RATES_BUILT_IN, err, errlen) != 0) {
         snprintf(err, errlen, "--plot needs %s with matplotlib (Debian's python3-matplotlib: scripts/setup.sh)",
                  PLOT_PYTHON);
         return -1;
@@ -106,9 +107,9 @@ int path_plot_available(char *err, size_t errlen)
     return 0;
 }
 
-int path_plot(const plan *p, const fw_param_set *s, const char *png, char *err, size_t errlen)
+int path_plot(const plan *p, const fw_param_set *s, fw_rates r, const char *png, char *err, size_t errlen)
 {
-    const int rc = run_python(script, png, p, s, err, errlen);
+    const int rc = run_python(script, png, p, s, r, err, errlen);
     if (rc != 0) {
         if (rc > 0)
             snprintf(err, errlen, "%s could not draw %s (python3 exited %d)", PLOT_PYTHON, png, rc);

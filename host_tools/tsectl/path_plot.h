@@ -7,13 +7,14 @@
 
 #include <stddef.h>
 
+#include "fw/limits.h"
 #include "fw/params.h"
 #include "plan/plan.h"
 
 /* Whether the plot can be drawn here (python3 with matplotlib).  0, or -1 with why in err. */
 int path_plot_available(char *err, size_t errlen);
 
-/* Draws plan p (planned under set s) into png.  0, or -1 with why in err. */
-int path_plot(const plan *p, const fw_param_set *s, const char *png, char *err, size_t errlen);
+/* Draws plan p (planned under set s at rates r) into png.  0, or -1 with why in err. */
+int path_plot(const plan *p, const fw_param_set *s, fw_rates r, const char *png, char *err, size_t errlen);
 
 #endif

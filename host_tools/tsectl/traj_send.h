@@ -1,11 +1,12 @@
 /* A trajectory's rows to a controller (tsectl trajectory, tsectl path): the controller's state,
- * parameters, pose and slides read first, the rows checked whole from there by its own validator,
- * then streamed (cmd_traj.c says what a user may rely on). */
+ * parameters, rates (INFO), pose and slides read first, the rows checked whole from there by its own
+ * validator at its rates, then streamed (cmd_traj.c says what a user may rely on). */
 #ifndef TSECTL_TRAJ_SEND_H
 #define TSECTL_TRAJ_SEND_H
 
 #include <stdbool.h>
 
+#include "fw/limits.h"
 #include "fw/params.h"
 #include "telemetry.h"
 #include "traj_file.h"
@@ -15,6 +16,7 @@ typedef struct {
     proto_message st; /* the STATUS read */
     int seq;          /* the sequence number to start at */
     fw_param_set set; /* the controller's parameters */
+    fw_rates rates;   /* and rates (ctl_rates) */
     telemetry tel;    /* its pose and slides */
     bool have_start;  /* tel holds both (telemetry is on) */
 } traj_session;

@@ -49,6 +49,13 @@ int ctl_halt(tlink *l, const char *why);
 /* Sends ESTOP at once (no STATUS first) and waits for its answer.  Returns an exit status. */
 int ctl_estop(tlink *l);
 
+/* A question (PARAM_GET, INFO_GET): sends msg with `values`, waits for its ACK, then for the
+ * `reply` message whose first field is `key` (any, when key < 0).  Returns EXIT_OK with the reply in
+ * *out, EXIT_REJECTED with the REJECT in *out (nothing printed), or EXIT_BUS, EXIT_TIMEOUT (said,
+ * naming `what` when the reply does not come), EXIT_INTERRUPTED. */
+int ctl_ask(tlink *l, proto_msg msg, const int32_t *values, proto_msg reply, int key, const char *what,
+            proto_message *out);
+
 /* Sends a one-field command with the next sequence number and waits for its answer; a REJECT is
  * explained.  Returns an exit status; *reject gets a REJECT if given. */
 int ctl_simple(tlink *l, proto_msg msg, proto_message *reject);

@@ -54,7 +54,7 @@ const char *plan_explain(const plan_result *r, const plan_waypoint *wp, char *bu
             snprintf(buf, cap, "%s", r->why);
         break;
     case PLAN_PARAMS:
-        snprintf(buf, cap, "the controller would refuse the parameter set itself");
+        snprintf(buf, cap, "the controller would refuse the parameter set itself (at its rates)");
         break;
     case PLAN_WORKSPACE:
         if (r->between)

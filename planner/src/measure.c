@@ -28,7 +28,7 @@ int plan_measure(const plan *p, plan_stats *st)
     st->v_limit = (double)p->lim.slide_vmax;
     st->a_limit = (double)(FW_PATH_MARGIN * p->lim.slide_amax); /* what rows may use (fw/path.h) */
     st->j_limit = p->jmax;
-    if (traj_checker_start(&c, &p->set, p->wp[0].pose, p->q0) != 0)
+    if (traj_checker_start(&c, &p->set, p->opt.rates, p->wp[0].pose, p->q0) != 0)
         return -1;
     /* The motion's time: from the row holding the start to the last. */
     const double t0 = plan_hold(p), T = plan_duration(p) - t0;

@@ -19,6 +19,7 @@ void plan_options_default(plan_options *o)
     o->v_margin = 0.995;
     o->a_margin = 0.985;
     o->jmax = 0.0; /* none: the controller bounds no trajectory's jerk */
+    o->rates = FW_RATES_BUILT_IN;
 }
 
 static int bad(plan_result *r, int waypoint, const char *why)
@@ -124,11 +125,11 @@ static double chord_length(const plan_waypoint *wp, int n, double r_top)
     return len;
 }
 
-double plan_row_spacing_min(const fw_param_set *s)
+double plan_row_spacing_min(const fw_param_set *s, fw_rates r)
 {
     tse_geometry g;
     fw_limits lim;
-    if (fw_limits_from_params(s, FW_STEP_HZ, FW_SEGMENT_HZ, &g, &lim) != 0)
+    if (traj_limits(s, r, &g, &lim) != 0)
         return PLAN_ROW_MIN_US * 1e-6;
     const double need = (double)fw_traj_stop_reach(fw_traj_stop_time(lim.slide_vmax, lim.slide_amax, 0.0)) +
                          2.0 / (double)lim.segment_hz + PLAN_QUEUE_MARGIN_S;
@@ -140,7 +141,7 @@ size_t plan_bytes(const fw_param_set *s, const plan_waypoint *wp, int n, const p
     plan_result r;
     tse_geometry g;
     fw_limits lim;
-    if (check_input(wp, n, o, &r) != 0 || fw_limits_from_params(s, FW_STEP_HZ, FW_SEGMENT_HZ, &g, &lim) != 0)
+    if (check_input(wp, n, o, &r) != 0 || traj_limits(s, o->rates, &g, &lim) != 0)
         return 0;
     const long N = grid_points(chord_length(wp, n, g.r_top));
     if (N > PLAN_GRID_MAX)
@@ -248,7 +249,7 @@ plan *plan_make(void *mem, size_t bytes, const fw_param_set *s, const plan_waypo
         return NULL;
     tse_geometry g;
     fw_limits lim;
-    if (fw_limits_from_params(s, FW_STEP_HZ, FW_SEGMENT_HZ, &g, &lim) != 0) {
+    if (traj_limits(s, o->rates, &g, &lim) != 0) {
         r->status = PLAN_PARAMS;
         return NULL;
     }
@@ -275,7 +276,7 @@ plan *plan_make(void *mem, size_t bytes, const fw_param_set *s, const plan_waypo
     p->jmax = o->jmax == PLAN_JMAX_CONTROLLER ? (double)fw_slide_jmax(&lim) : o->jmax;
     p->period_us = llround(o->period * 1e6);
     p->hold_us = s->v[FP_TRAJ_LEAD] > PLAN_ROW_MIN_US ? s->v[FP_TRAJ_LEAD] : PLAN_ROW_MIN_US;
-    p->min_us = llround(plan_row_spacing_min(s) * 1e6);
+    p->min_us = llround(plan_row_spacing_min(s, o->rates) * 1e6);
     if (p->period_us < p->min_us) {
         r->status = PLAN_BAD_INPUT;
         r->why = "the period is shorter than the controller's queue allows at its speed limit (plan_row_spacing_min)";

@@ -7,7 +7,7 @@
 int plan_validate(plan *p, plan_result *r)
 {
     const double *pose0 = p->wp[0].pose;
-    if (traj_checker_start(&p->chk, &p->set, pose0, p->q0) != 0) {
+    if (traj_checker_start(&p->chk, &p->set, p->opt.rates, pose0, p->q0) != 0) {
         r->status = PLAN_PARAMS;
         return 1;
     }

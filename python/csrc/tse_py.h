@@ -40,18 +40,25 @@ TSE_PY_API void tse_py_params_default(double v[TSE_PY_NPARAMS]);
  * message in err. */
 TSE_PY_API int tse_py_params_load(const char *path, int design, double v[TSE_PY_NPARAMS], char *err, size_t errlen);
 
+/* A controller's rates (INFO's step_hz and segment_hz): the built-in ones (fw/limits.h), which a
+ * controller whose firmware is older than INFO ran at, into rates[2]; and whether a controller runs
+ * at step_hz and segment_hz (fw_rates_run): 1 or 0. */
+TSE_PY_API void tse_py_rates_built_in(unsigned rates[2]);
+TSE_PY_API int tse_py_rates_run(unsigned step_hz, unsigned segment_hz);
+
 /* The controller's whole-path check of a trajectory, tsectl's (host_tools/traj_check): from rest at
  * pose0[6] (m, rad) with slides q0[6] (m), under the controller's parameter set params[n_params]
- * (its raw wire integers in parameter-id order, as PARAM_GET reads them), n rows dt_us[n] apart (the
- * first from the start) at poses[n][6] (m, rad; rounded as the wire rounds them), the last flagged
- * last.  Returns 0 when every row passes, 1 when row *row (0-based) would be refused, with the
- * REJECT's fields the controller would send in reject[7] (function, seq 0, reason, scissor,
- * kin_status, field, where), -1 when the controller would refuse the set itself, -2 when n_params
- * is not this library's parameter count.  *v_peak, *a_peak: the worst slide speed and acceleration
+ * (its raw wire integers in parameter-id order, as PARAM_GET reads them) at its rates step_hz and
+ * segment_hz (INFO's), n rows dt_us[n] apart (the first from the start) at poses[n][6] (m, rad;
+ * rounded as the wire rounds them), the last flagged last.  Returns 0 when every row passes, 1 when
+ * row *row (0-based) would be refused, with the REJECT's fields the controller would send in
+ * reject[7] (function, seq 0, reason, scissor, kin_status, field, where), -1 when the controller
+ * would refuse the set itself, -2 when n_params is not this library's parameter count, -3 when no
+ * controller runs at those rates.  *v_peak, *a_peak: the worst slide speed and acceleration
  * checked, against their limits (1 = at the limit). */
-TSE_PY_API int tse_py_traj_check(const int *params, int n_params, const double pose0[6], const double q0[6], long n,
-                                 const unsigned *dt_us, const double *poses, long *row, int reject[7],
-                                 double *v_peak, double *a_peak);
+TSE_PY_API int tse_py_traj_check(const int *params, int n_params, unsigned step_hz, unsigned segment_hz,
+                                 const double pose0[6], const double q0[6], long n, const unsigned *dt_us,
+                                 const double *poses, long *row, int reject[7], double *v_peak, double *a_peak);
 
 /* A REJECT's seven fields (function, seq, reason, scissor, kin_status, field, where: raw, as the
  * frame carries them) in tsectl's words, "rejected: REASON: explanation", into buf (cap bytes, 512
@@ -72,7 +79,8 @@ TSE_PY_API int tse_py_rest_judge(double expected_s, int settled, int *seen_motio
 
 /* tse-kin plan's planner (planner/): waypoints poses[n][6] (m, rad), each with a time t[n] and a
  * plate speed cap v[n] (NaN where free; t and v may be NULL), under the controller's parameter set
- * params[n_params] (raw, as for tse_py_traj_check), rows `period` s apart, corners cut by at most
+ * params[n_params] at its rates step_hz and segment_hz (as for tse_py_traj_check; rates no
+ * controller runs at are refused, -1 with why), rows `period` s apart, corners cut by at most
  * `blend` m (0: a spline through every waypoint), the slides' jerk held to jmax m/s^3 (0: no limit;
  * below 0: the controller's own, PLAN_JMAX_CONTROLLER).  Returns the number of rows of the plan, and when
  * it is at most cap fills rows[][7] (t, x, y, z, roll, pitch, yaw); -1 with the reason in err (the
@@ -80,9 +88,9 @@ TSE_PY_API int tse_py_rest_judge(double expected_s, int settled, int *seen_motio
  * parameter count.  stats: duration [s], the peak speed and acceleration over their limits, the
  * limits [m/s, m/s^2], the rows outside the first and last 5 % of the time, of those the rows with
  * some slide at 90 % or more of a limit, and the validator's refusals on the way. */
-TSE_PY_API long tse_py_plan(const int *params, int n_params, long n, const double *poses, const double *t,
-                            const double *v, double period, double blend, double jmax, long cap, double *rows,
-                            double stats[8], char *err, size_t errlen);
+TSE_PY_API long tse_py_plan(const int *params, int n_params, unsigned step_hz, unsigned segment_hz, long n,
+                            const double *poses, const double *t, const double *v, double period, double blend,
+                            double jmax, long cap, double *rows, double stats[8], char *err, size_t errlen);
 
 #if defined(TSE_REAL_FLOAT) && TSE_REAL_FLOAT
 #define TSE_PY(name) name##_f

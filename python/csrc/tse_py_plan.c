@@ -6,13 +6,20 @@
 #include "plan_text.h"
 #include "tse_py.h"
 
-long tse_py_plan(const int *params, int n_params, long n, const double *poses, const double *t, const double *v,
-                 double period, double blend, double jmax, long cap, double *rows, double stats[8], char *err,
-                 size_t errlen)
+long tse_py_plan(const int *params, int n_params, unsigned step_hz, unsigned segment_hz, long n, const double *poses,
+                 const double *t, const double *v, double period, double blend, double jmax, long cap, double *rows,
+                 double stats[8], char *err, size_t errlen)
 {
     memset(stats, 0, 8 * sizeof *stats);
     if (n_params != FP_COUNT)
         return -2;
+    if (!fw_rates_run((fw_rates){step_hz, segment_hz})) {
+        snprintf(err, errlen,
+                 "%u Hz step interrupts and %u Hz control segments: no controller runs at these rates (a control "
+                 "segment of whole microseconds and whole step interrupts)",
+                 step_hz, segment_hz);
+        return -1;
+    }
     fw_param_set s;
     for (int i = 0; i < FP_COUNT; ++i)
         s.v[i] = params[i];
@@ -37,6 +44,7 @@ long tse_py_plan(const int *params, int n_params, long n, const double *poses, c
     o.period = period;
     o.blend = blend;
     o.jmax = jmax < 0.0 ? PLAN_JMAX_CONTROLLER : jmax;
+    o.rates = (fw_rates){step_hz, segment_hz};
     plan_made m;
     long rc = -1;
     if (plan_text_make(&s, wp, (int)n, &o, "plan", &m, err, errlen) == 0) {

@@ -7,7 +7,9 @@ number is not the one expected next, ended when its trajectory is not the open o
 how a trajectory ended.
 
 over_report: STATUS reports that many free slots more than there are (a report that is behind).
-stop_after: after that many rows taken, the trajectory ends as by a STOP from another host."""
+stop_after: after that many rows taken, the trajectory ends as by a STOP from another host.
+info: what INFO_GET page 0 is answered with after its ACK, ((major, minor, patch), step_hz,
+segment_hz); None: refused as unknown, as a firmware older than INFO refuses it."""
 import math
 import threading
 import time
@@ -36,8 +38,9 @@ def home_pose():
 
 
 class FakeController:
-    def __init__(self, channel, node=3, capacity=32, over_report=0, stop_after=None):
+    def __init__(self, channel, node=3, capacity=32, over_report=0, stop_after=None, info=((9, 8, 7), 200000, 1000)):
         self.node, self.capacity, self.over_report, self.stop_after = node, capacity, over_report, stop_after
+        self.info = info
         self.bus = pycan.Bus(interface="virtual", channel=channel, receive_own_messages=False)
         import numpy as np  # the home pose's slides: tse.kin, only for the fake itself
 
@@ -139,6 +142,14 @@ class FakeController:
                 self._send("ACK", function=P.MESSAGES[name][0], seq=0, queue_depth=0, queue_free=self.capacity,
                            detail=0)
                 self._send("PARAM_VALUE", param=v["param"], value=P.PARAMS[v["param"]][4])
+            elif name == "INFO_GET" and self.info is None:  # (not a row's answer: not in self.answers)
+                self._send("REJECT", function=P.MESSAGES[name][0], seq=0, reason=tcan._enum_value("reason", "unknown"),
+                           scissor=0, kin_status=0, field=0, where=0)
+            elif name == "INFO_GET":
+                self._send("ACK", function=P.MESSAGES[name][0], seq=0, queue_depth=len(self.queue),
+                           queue_free=self.capacity - len(self.queue), detail=0)
+                (major, minor, patch), step_hz, segment_hz = self.info
+                self._send("INFO", major=major, minor=minor, patch=patch, step_hz=step_hz, segment_hz=segment_hz)
             elif name == "TRAJ_COMMIT":
                 self._row(v, now)
             elif name == "STOP":

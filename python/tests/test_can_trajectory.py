@@ -114,3 +114,55 @@ def test_a_stop_from_elsewhere_is_named_and_not_answered_with_a_stop(rig):
                              "or program) after 10 of 40 rows; row 10 (t = 0.22 s) was not taken")
     assert "rejected: ended: TRAJ_COMMIT: its trajectory was ended by a STOP" in str(r)
     assert not any(to_controller(f) and to_controller(f)[0] == "STOP" for f in spy.frames)
+
+
+def sweep_x(dist=0.06, seconds=1.0, n=100):
+    """n rows over `seconds` from the home pose: dist along X, minimum-jerk.  Its slides reach a speed
+    between the step generator's limits at 100 kHz and at 200 kHz step interrupts with the default
+    parameters, 0.9 x (100 - 2) and 0.9 x (200 - 2) steps per 1 ms segment at 1.28M steps/m (0.0689
+    and 0.1392 m/s): what the controller's rates decide."""
+    p0, rows = home_pose(), []
+    for i in range(n):
+        s = (i + 1) / n
+        e = s * s * s * (10 - 15 * s + 6 * s * s)
+        rows.append((seconds * s, p0[0] + dist * e, *p0[1:]))
+    return rows
+
+
+def test_info_is_the_controllers_answer(rig):
+    ctl, _fake, spy = rig
+    assert ctl.info() == tcan.Info((9, 8, 7), 200000, 1000)
+    asked = [to_controller(f) for f in spy.frames if to_controller(f) and to_controller(f)[0] == "INFO_GET"]
+    assert [a[2] for a in asked] == [{"page": 0}]
+
+
+def test_the_check_is_at_the_controllers_rates(rig):
+    ctl, fake, spy = rig
+    rows = sweep_x()
+    done = ctl.trajectory(rows)  # 200 kHz steps (the fake's INFO): within the step generator's limit
+    assert done.rows == len(rows)
+    fake.info = ((9, 8, 7), 100000, 1000)  # the same rows for a controller at 100 kHz
+    before = len(fake.answers)
+    with pytest.raises(tcan.Rejected) as e:
+        ctl.trajectory(rows)
+    r = e.value
+    print(r)
+    assert (r.command, r.reason, r.limit) == ("TRAJ_COMMIT", "timing", "step_generator")
+    assert "would be refused; nothing was sent" in str(r)
+    assert len(fake.answers) == before
+
+
+@pytest.mark.parametrize("rig", [{"info": None}], indirect=True)
+def test_a_firmware_older_than_info_is_judged_at_the_built_in_rates(rig):
+    ctl, fake, _spy = rig
+    with pytest.raises(tcan.Rejected) as e:
+        ctl.info()
+    assert e.value.reason == "unknown" and e.value.command == "INFO_GET"
+    # The check still runs, at the built-in rates, and says so: a jump is refused before sending.
+    p0 = home_pose()
+    rows = [(0.02, *p0), (0.04, p0[0] + 0.005, *p0[1:])]
+    with pytest.warns(UserWarning, match="does not know INFO_GET .* built-in rates, 200000 Hz step interrupts and "
+                                         "1000 Hz control segments"):
+        with pytest.raises(tcan.Rejected) as e:
+            ctl.trajectory(rows)
+    assert e.value.reason == "timing" and fake.answers == []

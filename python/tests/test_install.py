@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from tse import kin
 
@@ -34,3 +35,14 @@ def test_pip_install_no_build_isolation(tmp_path):
     where, q = r.stdout.splitlines()
     assert Path(where).is_relative_to(site)
     assert eval(q) == kin.ik(np.array([pose])).q[0].tolist()
+
+
+def test_the_package_version_is_the_projects():
+    """pyproject.toml's version is the project's (CMakeLists.txt's project(... VERSION), which the
+    firmware reports in INFO): CMake gives it to this suite as TSE_PROJECT_VERSION."""
+    want = os.environ.get("TSE_PROJECT_VERSION")
+    if not want:
+        pytest.skip("TSE_PROJECT_VERSION not set (run by ctest)")
+    text = (PYDIR / "pyproject.toml").read_text()
+    got = next(line.split('"')[1] for line in text.splitlines() if line.startswith("version = "))
+    assert got == want

@@ -77,6 +77,22 @@ def test_the_parameters_given_are_planned_against():
     assert capped.duration > 0.3 / 0.1
 
 
+def test_the_rates_given_are_planned_at():
+    """A controller at 100 kHz step interrupts: its step generator allows 0.9 x (100 - 2) steps per
+    1 ms segment (the DIR set-up of 5 us a tick, plus one) at 1.28M steps/m, 0.06890625 m/s, against
+    the built-in rates' 0.9 x 198 steps, 0.13921875 m/s.  Rates no controller runs at are refused."""
+    wp = np.array([[0, 0, 0.9, 0, 0, 0], [0, 0, 1.2, 0, 0, 0]])
+    assert plan.built_in_rates() == (200000, 1000)
+    fast = plan.plan(wp)
+    slow = plan.plan(wp, rates=(100000, 1000))
+    assert fast.v_limit == pytest.approx(0.13921875, abs=1e-12)
+    assert slow.v_limit == pytest.approx(0.06890625, abs=1e-12)
+    assert slow.duration > fast.duration + 0.1
+    for bad in ((200000, 3000), (200500, 1000), (200000, 0), (2 ** 24, 1), "fast", (1, 2, 3)):
+        with pytest.raises(ValueError, match="rates"):
+            plan.plan(wp, rates=bad)
+
+
 @pytest.fixture
 def rig(request):
     channel = f"tse-plan-{os.getpid()}-{request.node.name}"
@@ -101,3 +117,14 @@ def test_path_plans_from_where_the_plate_is_and_streams_the_plan(rig):
     taken = np.array([[fake.taken[i][k] for k in ("x", "y", "z", "roll", "pitch", "yaw")]
                       for i in range(len(fake.taken))]) * 1e-6
     assert np.allclose(taken, p.rows[:, 1:], atol=0.6e-6)
+
+
+def test_path_is_planned_at_the_controllers_rates(rig):
+    """Controller.path plans at the rates the controller's INFO reports."""
+    ctl, fake = rig
+    h = home_pose()
+    wp = np.array([h, [h[0], h[1], h[2] + 0.1, 0, 0, 0]])
+    fake.info = ((9, 8, 7), 100000, 1000)
+    p, done = ctl.path(wp)
+    assert p.v_limit == pytest.approx(0.06890625, abs=1e-12)
+    assert done.rows == len(p.rows)

@@ -1,7 +1,7 @@
 """tse.can against a controller on vcan0 (run by tests/vcan/python_can.sh in the vcan harness):
 tse-sim, which the script starts with its log in $TSE_SIM_LOG, or the production image on the
 emulated board (TSE_TARGET=board; plant.py says where the robot physically is on each).  The tests run in file order on one simulated
-robot, as a user's session would: enable, home, a move checked to 10 um by the simulator's plant,
+robot, as a user's session would: INFO, enable, home, a move checked to 10 um by the simulator's plant,
 an unreachable pose refused with nothing moving, a short trajectory, a planned circle, a trajectory another client's
 STOP ends, Ctrl-C in waiting calls, parameters, e-stop, the watchdog on a killed heartbeat, and a
 motion stopped by leaving a with-block."""
@@ -48,6 +48,20 @@ def ctl():
             c.params["watchdog_ms"] = 3000
         FOUND["watchdog_ms"] = c.params["watchdog_ms"]
         yield c
+
+
+def test_info_before_homing(ctl):
+    """INFO in whatever state the robot is found: the package's version (pyproject.toml beside tse/,
+    which tests/../test_install.py holds to the project's) and the rates tse-sim and the board run,
+    200 kHz step interrupts and 1 kHz control segments (README)."""
+    info = ctl.info()
+    print(info)
+    assert (info.step_hz, info.segment_hz) == (200000, 1000)
+    pyproject = os.path.join(os.path.dirname(os.path.dirname(tcan.__file__)), "pyproject.toml")
+    if os.path.exists(pyproject):
+        with open(pyproject) as f:
+            version = next(line.split('"')[1] for line in f if line.startswith("version = "))
+        assert ".".join(str(v) for v in info.version) == version
 
 
 def test_enable_and_home(ctl):

@@ -193,6 +193,10 @@ MESSAGES = {
         ("magic", "u32", 0, 1163280723, 1163280723, "", 1.0, None,
          "0x45564153, the ASCII bytes S, A, V, E in wire order"),
     ), "Store the parameter set in non-volatile memory."),
+    "INFO_GET": (0x12, "to_controller", 1, (
+        ("page", "u8", 0, 0, 0, "", 1.0, None,
+         "what to report: 0, the firmware's version and the controller's rates (INFO); other pages are kept for later answers (a board's identity) and refused range until a firmware has them"),
+    ), "Ask what the controller is: acknowledged, then answered by the page's message (page 0: INFO). Accepted in every state; changes nothing."),
     "STATUS": (0x20, "to_host", 8, (
         ("state", "u8", 0, 0, 7, "", 1.0, "state",
          "controller state"),
@@ -273,6 +277,18 @@ MESSAGES = {
         ("rows", "u24", 3, 0, 16777215, "", 1.0, None,
          "rows it took (capped); after an underrun, the row it lacked is the next one"),
     ), "Sent once when a trajectory ends: when it ran to its last row (at rest), or the moment a STOP, a fault or an e-stop ends it (the robot then stops along the path)."),
+    "INFO": (0x29, "to_host", 8, (
+        ("major", "u8", 0, 0, 255, "", 1.0, None,
+         "the firmware's major version"),
+        ("minor", "u8", 1, 0, 255, "", 1.0, None,
+         "its minor version"),
+        ("patch", "u8", 2, 0, 255, "", 1.0, None,
+         "its patch version"),
+        ("step_hz", "u24", 3, 1, 16777215, "Hz", 1.0, None,
+         "the step interrupts per second it runs"),
+        ("segment_hz", "u16", 6, 1, 65535, "Hz", 1.0, None,
+         "the control segments per second it runs (a trajectory's rows and a move are judged over them)"),
+    ), "Answer to INFO_GET page 0, after its ACK: what the controller runs, so that a host judges a path or a parameter set at the controller's own rates (the slide speed its step generator allows, the segments a slide's acceleration is measured over) rather than assumed ones."),
 }
 
 # Parameter id: (name, wire unit, min raw, max raw, default raw, doc).

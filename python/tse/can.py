@@ -34,8 +34,8 @@ _pycan = need("can", "python3-can", "tse.can")
 
 from . import _protocol as _P
 
-__all__ = ["Controller", "Status", "Telemetry", "MoveInfo", "Streamed", "TseError", "Rejected", "Fault", "Ended",
-           "Timeout", "encode", "decode", "reject_words"]
+__all__ = ["Controller", "Status", "Telemetry", "MoveInfo", "Streamed", "Info", "TseError", "Rejected", "Fault",
+           "Ended", "Timeout", "encode", "decode", "reject_words"]
 
 # --- The codec, driven by the table --------------------------------------------------------------
 
@@ -137,6 +137,11 @@ and what set its pace ("asked", a plate limit's name such as "plate_vmax", or "s
 the slide 1..6 (A1, B1, A2, B2, A3, B3) and what it would have needed without the
 stretch over its limit, 1.14 = 14 % over; slide 0 and demand 0 otherwise): the controller's
 MOVE_INFO, kept as Controller.last_move."""
+
+Info = namedtuple("Info", "version step_hz segment_hz")
+Info.__doc__ = """What the controller is (its INFO): version, its firmware's (major, minor, patch), and the rates it
+runs at, step_hz step interrupts and segment_hz control segments per second, which its paths are
+judged at (the slide speed its step generator allows, the segments acceleration is measured over)."""
 
 Streamed = namedtuple("Streamed", "rows seconds rows_per_s fill_rows_per_s")
 Streamed.__doc__ = """What trajectory() returns: the rows streamed, the seconds from the first row sent to the last
@@ -265,24 +270,26 @@ def reject_words(raw):
 
 # --- The trajectory check, tsectl's (libtse_kin.so) -------------------------------------------------
 
-def _check_rows(params, pose0, slides0, plan):
+def _check_rows(params, rates, pose0, slides0, plan):
     """The controller's whole-path check (tse_py_traj_check) of plan [(dt_us, raw pose)] from rest at
-    pose0 with slides slides0 under the raw parameter set params: (None, None) when every row
-    passes, (row, REJECT fields) for the first it would refuse, None when it refuses the set."""
+    pose0 with slides slides0 under the raw parameter set params at rates (step_hz, segment_hz):
+    (None, None) when every row passes, (row, REJECT fields) for the first it would refuse, None when
+    it refuses the set."""
     from . import _native  # ctypes only; ImportError saying how to build the library
+    step_hz, segment_hz = _native.checked_rates(rates)
     f = _native.load().tse_py_traj_check
-    c_int, c_double, c_long = ctypes.c_int, ctypes.c_double, ctypes.c_long
+    c_int, c_double, c_long, c_uint = ctypes.c_int, ctypes.c_double, ctypes.c_long, ctypes.c_uint
     f.restype = c_int
-    f.argtypes = [ctypes.POINTER(c_int), c_int, ctypes.POINTER(c_double), ctypes.POINTER(c_double), c_long,
-                  ctypes.POINTER(ctypes.c_uint), ctypes.POINTER(c_double), ctypes.POINTER(c_long),
+    f.argtypes = [ctypes.POINTER(c_int), c_int, c_uint, c_uint, ctypes.POINTER(c_double), ctypes.POINTER(c_double),
+                  c_long, ctypes.POINTER(c_uint), ctypes.POINTER(c_double), ctypes.POINTER(c_long),
                   ctypes.POINTER(c_int), ctypes.POINTER(c_double), ctypes.POINTER(c_double)]
     scales = [f[6] for f in _POSE_FIELDS]
     n = len(plan)
     poses = (c_double * (6 * n))(*(raw[k] * scales[k] for _dt, raw in plan for k in range(6)))
     dts = (ctypes.c_uint * n)(*(dt for dt, _raw in plan))
     row, reject, v_peak, a_peak = c_long(), (c_int * 7)(), c_double(), c_double()
-    rc = f((c_int * len(params))(*params), len(params), (c_double * 6)(*pose0), (c_double * 6)(*slides0), n, dts,
-           poses, ctypes.byref(row), reject, ctypes.byref(v_peak), ctypes.byref(a_peak))
+    rc = f((c_int * len(params))(*params), len(params), step_hz, segment_hz, (c_double * 6)(*pose0),
+           (c_double * 6)(*slides0), n, dts, poses, ctypes.byref(row), reject, ctypes.byref(v_peak), ctypes.byref(a_peak))
     if rc == -2:
         raise TseError("libtse_kin.so and tse/_protocol.py know different parameter tables: rebuild the library")
     if rc < 0:
@@ -525,7 +532,7 @@ class Controller:
             if name == "STATUS":
                 self._status = _status_of(v)
                 self._status_serial += 1
-            elif name in ("ACK", "REJECT", "PARAM_VALUE", "MOVE_INFO"):
+            elif name in ("ACK", "REJECT", "PARAM_VALUE", "MOVE_INFO", "INFO"):
                 self._serial += 1
                 self._answers.append((self._serial, name, v))
                 del self._answers[:-512]
@@ -660,6 +667,39 @@ class Controller:
         """The controller's next STATUS (a Status)."""
         return self._fresh_status()
 
+    def info(self):
+        """What the controller is (INFO_GET, answered in every state): an Info with its firmware's version
+        and the rates it runs at.  A controller whose firmware is older than INFO refuses INFO_GET
+        as unknown: Rejected with reason "unknown"."""
+        with self._cmd_lock:
+            mark, name, v = self._exchange("INFO_GET", page=0)
+            if name == "REJECT":
+                raise Rejected(v)
+
+            def pick():
+                for serial, got, f in self._answers:
+                    if serial > mark and got == "INFO":
+                        return Info((f["major"], f["minor"], f["patch"]), f["step_hz"], f["segment_hz"])
+                return None
+            return self._wait_for(pick, self.timeout, "INFO")
+
+    def _rates(self):
+        """(step_hz, segment_hz) to judge this controller's paths at: its INFO's; from a controller that
+        does not know INFO_GET (its firmware older than INFO, when every firmware ran at the built-in
+        rates) the built-in ones, with a warning saying so."""
+        from . import _native
+        try:
+            i = self.info()
+        except Rejected as e:
+            if e.reason != "unknown":
+                raise
+            rates = _native.built_in_rates()
+            warnings.warn(f"node {self.node} does not know INFO_GET (a firmware older than INFO): judged at the "
+                          f"built-in rates, {rates[0]} Hz step interrupts and {rates[1]} Hz control segments, which "
+                          "every such firmware ran at", stacklevel=3)
+            return rates
+        return _native.checked_rates((i.step_hz, i.segment_hz))
+
     def enable(self):
         """Energises the drives."""
         self._command("ENABLE")
@@ -792,7 +832,8 @@ class Controller:
 
         Every row is checked before anything is sent: its values (ValueError naming the row), then
         the whole path by the controller's own validator, tsectl's (libtse_kin.so), from the
-        controller's parameters, pose and slides: a row it would refuse raises Rejected with .row
+        controller's parameters, rates (info(); the built-in ones, with a warning, from a firmware
+        older than INFO), pose and slides: a row it would refuse raises Rejected with .row
         and nothing is sent.  Rows then stream with the controller's flow control, several in
         flight.  progress(taken, total) is called as each row is acknowledged.  The rule is
         tsectl's: the path runs to its last row, or (a row refused, an exception such as
@@ -838,8 +879,9 @@ class Controller:
 
     def path(self, waypoints, t=None, v=None, period=0.02, blend=0.0, progress=None):
         """Plans a path through waypoints ((n, 6): x, y, z, roll, pitch, yaw) from where the plate is,
-        against the controller's own parameters (read first), with tse.plan (tsectl path's planner;
-        t, v, period and blend as tse.plan.plan takes them), then streams it with trajectory().
+        against the controller's own parameters and rates (read first; info()), with tse.plan
+        (tsectl path's planner; t, v, period and blend as tse.plan.plan takes them), then streams it
+        with trajectory().
         The path starts at the plate's pose: the first waypoint takes its place when it is within
         10 um (and 10 urad) of it, otherwise the path goes to it first.  Returns (Plan, Streamed);
         a path the planner refuses raises tse.plan.PlanError and nothing is sent.  Needs numpy."""
@@ -852,6 +894,7 @@ class Controller:
         tt = None if t is None else np.array(np.broadcast_to(np.asarray(t, dtype=float), (n,)))
         vv = None if v is None else np.array(np.broadcast_to(np.asarray(v, dtype=float), (n,)))
         params = [self._param_exchange("PARAM_GET", param=pid) for pid in range(len(_P.PARAMS))]
+        rates = self._rates()
         with contextlib.closing(self.watch(timeout=1.0)) as w:
             tel = next((x for x in w if x.pose is not None), None)
         if tel is None:
@@ -871,13 +914,14 @@ class Controller:
                 tt = np.concatenate([[math.nan], np.where(tt[:1] == 0.0, math.nan, tt[:1]), tt[1:]])
             if vv is not None:
                 vv = np.concatenate([[math.nan], vv])
-        p = _plan.plan(wp, tt, vv, params, period, blend)
+        p = _plan.plan(wp, tt, vv, params, period, blend, rates=rates)
         return p, self.trajectory(p.rows.tolist(), progress)
 
     def _check_path(self, plan, rows):
         """tsectl's check of the whole path before sending (tse_py_traj_check, the controller's
-        validator), from the controller's parameters, pose and slides; Rejected names the row."""
+        validator), from the controller's parameters, rates, pose and slides; Rejected names the row."""
         params = [self._param_exchange("PARAM_GET", param=pid) for pid in range(len(_P.PARAMS))]
+        rates = self._rates()
         with contextlib.closing(self.watch(timeout=1.0)) as w:
             tel = next((t for t in w if t.pose is not None), None)
         if tel is None:
@@ -885,9 +929,9 @@ class Controller:
                           "from where the robot is before sending; the controller checks each row as it comes",
                           stacklevel=3)
             return
-        r = _check_rows(params, tel.pose, tel.slides, plan)
+        r = _check_rows(params, rates, tel.pose, tel.slides, plan)
         if r is None:
-            raise TseError(f"node {self.node}'s parameters give no valid geometry (a firmware mismatch?)")
+            raise TseError(f"node {self.node}'s parameters give no valid geometry at its rates (a firmware mismatch?)")
         row, reject = r
         if row is not None:
             raise Rejected(reject, row=row, prefix=f"row {row} (t = {rows[row][0]:g} s) would be refused; nothing "

@@ -14,7 +14,9 @@ the same check of the rows by the controller's validator before they are returne
     p.duration, p.near_share
 
 Parameters are the controller's raw set (its wire integers in parameter-id order, as PARAM_GET
-reads them, tse.can.Controller.params_raw()); None plans with the controller's defaults.
+reads them, tse.can.Controller.params_raw()); None plans with the controller's defaults.  Rates are
+the controller's (step_hz, segment_hz) as tse.can.Controller.info() reports them; None plans for a
+controller at the built-in ones.
 """
 
 import ctypes
@@ -28,7 +30,7 @@ np = need("numpy", "python3-numpy", "tse.plan")
 from . import _native
 from . import _protocol as _P
 
-__all__ = ["Plan", "PlanError", "plan", "default_params"]
+__all__ = ["Plan", "PlanError", "plan", "default_params", "built_in_rates"]
 
 
 class PlanError(ValueError):
@@ -55,6 +57,11 @@ def default_params():
     return [p[4] for p in _P.PARAMS]
 
 
+def built_in_rates():
+    """(step_hz, segment_hz): the controller's built-in rates, which plan() assumes without rates."""
+    return _native.built_in_rates()
+
+
 _f = None
 
 
@@ -64,8 +71,9 @@ def _fn():
         dp = ctypes.POINTER(ctypes.c_double)
         _f = _native.load().tse_py_plan
         _f.restype = ctypes.c_long
-        _f.argtypes = [ctypes.POINTER(ctypes.c_int), ctypes.c_int, ctypes.c_long, dp, dp, dp, ctypes.c_double,
-                       ctypes.c_double, ctypes.c_double, ctypes.c_long, dp, dp, ctypes.c_char_p, ctypes.c_size_t]
+        _f.argtypes = [ctypes.POINTER(ctypes.c_int), ctypes.c_int, ctypes.c_uint, ctypes.c_uint, ctypes.c_long, dp, dp,
+                       dp, ctypes.c_double, ctypes.c_double, ctypes.c_double, ctypes.c_long, dp, dp, ctypes.c_char_p,
+                       ctypes.c_size_t]
     return _f
 
 
@@ -76,7 +84,7 @@ def _column(a, n, what):
     return a
 
 
-def plan(waypoints, t=None, v=None, params=None, period=0.02, blend=0.0, jerk=None):
+def plan(waypoints, t=None, v=None, params=None, period=0.02, blend=0.0, jerk=None, rates=None):
     """Plans a path through waypoints ((n, 6) array of x, y, z, roll, pitch, yaw in m and rad).
 
     t: the time each waypoint is passed [s] from the start (NaN where free; the first 0), or None;
@@ -84,14 +92,17 @@ def plan(waypoints, t=None, v=None, params=None, period=0.02, blend=0.0, jerk=No
     params: the controller's raw parameter set (None: its defaults); period: rows' spacing [s];
     blend: 0 for a smooth curve through every waypoint, else straight pieces whose corners are cut
     by at most that many metres; jerk: None (the controller bounds no trajectory's jerk), a limit for
-    the slides [m/s^3], or "controller" for the one its own moves keep to.  Returns a Plan; raises
-    PlanError with the planner's reason."""
+    the slides [m/s^3], or "controller" for the one its own moves keep to; rates: the controller's
+    (step_hz, segment_hz), as Controller.info() reports them (None: the built-in rates,
+    built_in_rates()), which its slide speed limit and the span its acceleration is measured over
+    follow.  Returns a Plan; raises PlanError with the planner's reason."""
     wp = np.ascontiguousarray(np.asarray(waypoints, dtype=float))
     if wp.ndim != 2 or wp.shape[1] != 6:
         raise ValueError(f"waypoints must be an (n, 6) array of x, y, z, roll, pitch, yaw; got shape {wp.shape}")
     n = wp.shape[0]
     tt, vv = _column(t, n, "t"), _column(v, n, "v")
     raw = default_params() if params is None else [int(x) for x in params]
+    step_hz, segment_hz = _native.checked_rates(rates)
     if len(raw) != len(_P.PARAMS):
         raise ValueError(f"params: {len(raw)} values, the controller has {len(_P.PARAMS)}")
     if not (math.isfinite(period) and math.isfinite(blend)):
@@ -116,8 +127,8 @@ def plan(waypoints, t=None, v=None, params=None, period=0.02, blend=0.0, jerk=No
     cap = int(20.0 / period) + n + 2
     for _attempt in range(2):
         rows = np.zeros((cap, 7))
-        got = _fn()(c_params, len(raw), n, ptr(wp), ptr(tt), ptr(vv), float(period), float(blend), jmax, cap,
-                    ptr(rows), ptr(stats), err, len(err))
+        got = _fn()(c_params, len(raw), step_hz, segment_hz, n, ptr(wp), ptr(tt), ptr(vv), float(period), float(blend),
+                    jmax, cap, ptr(rows), ptr(stats), err, len(err))
         if got == -2:
             raise RuntimeError("libtse_kin.so and tse/_protocol.py know different parameter tables: rebuild the library")
         if got < 0:

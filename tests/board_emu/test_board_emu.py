@@ -34,6 +34,13 @@ NODE = 1
 REAL_PER_VIRTUAL = 60.0
 
 
+def project_version():
+    """(major, minor, patch) of project(... VERSION ...) in the top CMakeLists.txt."""
+    with open(os.path.join(ROOT, "CMakeLists.txt")) as f:
+        m = re.search(r"^project\(\S+ VERSION (\d+)\.(\d+)\.(\d+)", f.read(), re.M)
+    return tuple(int(x) for x in m.groups())
+
+
 def emulator_path():
     """The emulator binary, or None when emu/build.sh has not built it for emu/ as it is."""
     if os.environ.get("TSE_EMU_QEMU"):
@@ -112,7 +119,8 @@ class BoardEmu(unittest.TestCase):
 
     # -- the tests --
     def test_boot(self):
-        """Boots to disabled with no fault: the boot line says boot faults 0, STATUS says so."""
+        """Boots to disabled with no fault: the boot line says boot faults 0, STATUS says so; INFO says
+        the version and the rates."""
         em = self.start()
         c = self.controller(em)
         st = c.status()
@@ -123,6 +131,9 @@ class BoardEmu(unittest.TestCase):
         lines = self.wait_virtual(em, 1.0, lambda e: self.boot_lines(e), "boot line")
         self.assertEqual(lines, [f"tse-fw node {NODE}: boot faults 0x00"])
         self.assertEqual(em.rig("log"), ["end"])
+        # INFO: the project's version (CMakeLists.txt's) and the board's rates, 200 kHz step
+        # interrupts and 1 kHz control segments (README).
+        self.assertEqual(c.info(), tc.Info(project_version(), 200000, 1000))
 
     def test_param_get_round_trip(self):
         """PARAM_GET is answered (its value is the table's default); prints the round trip."""

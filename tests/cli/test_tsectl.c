@@ -203,6 +203,15 @@ static traj_row row(double t, double dx, double dz, int line)
     return r;
 }
 
+/* n rows over `seconds`: dx along X from pose0, minimum-jerk. */
+static void min_jerk_x(traj_row *rows, int n, double seconds, double dx)
+{
+    for (int i = 0; i < n; ++i) {
+        const double s = (i + 1) / (double)n, e = s * s * s * (10 - 15 * s + 6 * s * s);
+        rows[i] = row(seconds * s, dx * e, 0, i + 1);
+    }
+}
+
 static void check_holding_still_passes(void **state)
 {
     (void)state;
@@ -210,7 +219,7 @@ static void check_holding_still_passes(void **state)
     for (int i = 0; i < 10; ++i)
         rows[i] = row(0.1 * (i + 1), 0, 0, i + 1);
     traj_check_result r;
-    assert_int_equal(traj_check(&defaults, pose0, q0, rows, 10, &r), 0);
+    assert_int_equal(traj_check(&defaults, FW_RATES_BUILT_IN, pose0, q0, rows, 10, &r), 0);
     assert_int_equal(r.row, -1);
     /* Still, up to the solver's rounding (1e-12 m over 1 ms is 1e-9 m/s). */
     if (!(r.v_peak < 1e-6 && r.a_peak < 1e-4))
@@ -224,7 +233,7 @@ static void check_speed_jump_is_acceleration(void **state)
     (void)state;
     traj_row rows[2] = {row(0.5, 0.05, 0, 7), row(1.0, 0.05, 0, 8)};
     traj_check_result r;
-    assert_int_equal(traj_check(&defaults, pose0, q0, rows, 2, &r), 1);
+    assert_int_equal(traj_check(&defaults, FW_RATES_BUILT_IN, pose0, q0, rows, 2, &r), 1);
     assert_int_equal(r.row, 0);
     assert_int_equal(r.why.v[2], FW_REASON_TIMING);
     assert_int_equal(r.why.v[5] / 16, FW_LIMIT_SLIDE_AMAX);
@@ -240,19 +249,16 @@ static void check_speed_limit(void **state)
     (void)state;
     enum { N = 100 };
     traj_row rows[N];
-    for (int i = 0; i < N; ++i) {
-        const double s = (i + 1) / (double)N, e = s * s * s * (10 - 15 * s + 6 * s * s);
-        rows[i] = row(2.0 * s, 0.05 * e, 0, i + 1);
-    }
+    min_jerk_x(rows, N, 2.0, 0.05);
     traj_check_result r;
-    assert_int_equal(traj_check(&defaults, pose0, q0, rows, N, &r), 0);
+    assert_int_equal(traj_check(&defaults, FW_RATES_BUILT_IN, pose0, q0, rows, N, &r), 0);
     /* Checked against the limit in effect: the step generator's 0.9 x 198 steps per 1 ms at
      * 1.28M steps/m, 0.13921875 m/s, not slide_vmax's 0.15. */
     assert_true(fabs(r.v_limit - 0.13921875) < 1e-12);
     assert_int_equal(r.v_by, FW_LIMIT_STEP_GENERATOR);
     fw_param_set slow = defaults;
     slow.v[FP_SLIDE_VMAX] = 1000; /* 1 mm/s */
-    assert_int_equal(traj_check(&slow, pose0, q0, rows, N, &r), 1);
+    assert_int_equal(traj_check(&slow, FW_RATES_BUILT_IN, pose0, q0, rows, N, &r), 1);
     assert_int_equal(r.why.v[2], FW_REASON_TIMING);
     assert_int_equal(r.why.v[5] / 16, FW_LIMIT_SLIDE_VMAX);
     assert_true(r.why.v[6] > 1000);
@@ -262,7 +268,7 @@ static void check_speed_limit(void **state)
      * 150 and the path's 47 mm/s: refused, naming the step generator, per mille of 17.82 mm/s. */
     fw_param_set fine = defaults;
     fine.v[FP_STEPS_PER_M] = 10000000;
-    assert_int_equal(traj_check(&fine, pose0, q0, rows, N, &r), 1);
+    assert_int_equal(traj_check(&fine, FW_RATES_BUILT_IN, pose0, q0, rows, N, &r), 1);
     assert_int_equal(r.why.v[2], FW_REASON_TIMING);
     assert_int_equal(r.why.v[5] / 16, FW_LIMIT_STEP_GENERATOR);
     assert_true(r.why.v[6] > 1000);
@@ -270,12 +276,45 @@ static void check_speed_limit(void **state)
     assert_int_equal(r.v_by, FW_LIMIT_STEP_GENERATOR);
 }
 
+/* The same file judged for controllers at other rates (what INFO reports).  A minimum-jerk 10 cm
+ * along X over 2 s brings a slide to between half and the whole of the built-in rates' limit, the
+ * step generator's 0.9 x (200 - 2) steps per 1 ms segment at 1.28M steps/m = 0.13921875 m/s; at
+ * 100 kHz step interrupts a segment holds 100 - 2 (the DIR set-up of 5 us rounds up to one tick,
+ * plus one), 0.9 x 98 / 1 ms / 1.28M = 0.06890625 m/s, which the same rows exceed: refused naming
+ * the step generator.  At 2 kHz segments and 200 kHz steps a segment holds 100 - 2 steps per
+ * 0.5 ms: 0.1378125 m/s.  Rates no controller runs at: refused like a set it cannot run. */
+static void check_at_the_controllers_rates(void **state)
+{
+    (void)state;
+    enum { N = 100 };
+    traj_row rows[N];
+    min_jerk_x(rows, N, 2.0, 0.1);
+    traj_check_result r;
+    const fw_rates built_in = {200000, 1000}, slow_steps = {100000, 1000}, fast_segments = {200000, 2000};
+    assert_int_equal(traj_check(&defaults, built_in, pose0, q0, rows, N, &r), 0);
+    assert_true(fabs(r.v_limit - 0.13921875) < 1e-12);
+    if (!(r.v_peak > 0.5 && r.v_peak < 1.0))
+        fail_msg("the slides reach %g of the built-in rates' limit, not between half and all of it", r.v_peak);
+    const double peak = r.v_peak * r.v_limit; /* m/s */
+    assert_int_equal(traj_check(&defaults, slow_steps, pose0, q0, rows, N, &r), 1);
+    assert_int_equal(r.why.v[2], FW_REASON_TIMING);
+    assert_int_equal(r.why.v[5] / 16, FW_LIMIT_STEP_GENERATOR);
+    assert_true(fabs(r.v_limit - 0.06890625) < 1e-12);
+    /* Refused where a slide first passes the lower limit: at most the path's peak against it. */
+    assert_true(r.why.v[6] > 1000 && r.why.v[6] <= (int32_t)ceil(peak / 0.06890625 * 1000.0) + 1);
+    assert_int_equal(traj_check(&defaults, fast_segments, pose0, q0, rows, N, &r), 0);
+    assert_true(fabs(r.v_limit - 0.1378125) < 1e-12);
+    const fw_rates unusable[] = {{200000, 0}, {200000, 3000}, {200500, 1000}, {200000, 100000}};
+    for (size_t i = 0; i < sizeof unusable / sizeof unusable[0]; ++i)
+        assert_int_equal(traj_check(&defaults, unusable[i], pose0, q0, rows, N, &r), -1);
+}
+
 static void check_unreachable_row(void **state)
 {
     (void)state;
     traj_row rows[2] = {row(0.1, 0, 0, 3), row(60.0, 0, 1.8, 4)}; /* z = 3 m: past full extension */
     traj_check_result r;
-    assert_int_equal(traj_check(&defaults, pose0, q0, rows, 2, &r), 1);
+    assert_int_equal(traj_check(&defaults, FW_RATES_BUILT_IN, pose0, q0, rows, 2, &r), 1);
     assert_int_equal(r.row, 1);
     assert_int_equal(r.why.v[2], FW_REASON_KINEMATICS);
     assert_true(r.why.v[3] >= 1 && r.why.v[3] <= 3);
@@ -291,6 +330,7 @@ int main(void)
         cmocka_unit_test_setup(check_holding_still_passes, setup),
         cmocka_unit_test_setup(check_speed_jump_is_acceleration, setup),
         cmocka_unit_test_setup(check_speed_limit, setup),
+        cmocka_unit_test_setup(check_at_the_controllers_rates, setup),
         cmocka_unit_test_setup(check_unreachable_row, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

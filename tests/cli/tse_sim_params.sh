@@ -5,6 +5,7 @@
 # as opening the interface, which then fails with exit 1.)
 set -u
 T=$1
+TSE_VERSION=$2
 . "$(dirname "$0")/../support/check.sh"
 
 "$T" --help 2>"$tmp/usage"; check "--help exits 0" test $? -eq 0
@@ -63,5 +64,23 @@ for bad in "" "0.1x" "1"; do
   "$T" --iface nosuchcan0 --node 1 --start "$bad" >/dev/null 2>&1; rc=$?
   check "--start '$bad' exits 2" test $rc -eq 2
 done
+
+# --step-hz and --segment-hz: rates a controller runs at, or refused before anything starts; a set
+# that cannot run at the rates asked is refused as the rates' (the defaults' 2.5 us STEP pulse ends
+# within a 400 kHz step interrupt's 2.5 us period only at its very end: refused).
+"$T" --version >"$tmp/out" 2>&1; rc=$?
+check "--version exits 0 with the project's version" test $rc -eq 0 -a "$(cat "$tmp/out")" = "tse-sim $TSE_VERSION"
+"$T" --iface nosuchcan0 --node 1 --step-hz 100000 --segment-hz 2000 >"$tmp/out" 2>"$tmp/err"; rc=$?
+check "other rates a controller runs at are taken (then no CAN: exit 1)" test $rc -eq 1
+for bad in "--segment-hz 3000" "--step-hz 200500" "--segment-hz 0" "--step-hz -5" "--step-hz 2x" \
+           "--step-hz 16777216 --segment-hz 1" "--segment-hz 100000"; do
+  # shellcheck disable=SC2086 # the option and its value, word by word
+  "$T" --iface nosuchcan0 --node 1 $bad >/dev/null 2>"$tmp/err"; rc=$?
+  check "'$bad' exits 2 before anything starts" test $rc -eq 2
+  check "'$bad' is said wrong" grep -Eq "no controller runs at|takes whole hertz" "$tmp/err"
+done
+"$T" --iface nosuchcan0 --node 1 --step-hz 400000 >/dev/null 2>"$tmp/err"; rc=$?
+check "the defaults at 400 kHz step interrupts: refused (exit 2), naming the rates" \
+  test $rc -eq 2 -a -n "$(grep 'not even its default parameters run at 400000 Hz step interrupts' "$tmp/err")"
 
 check_done

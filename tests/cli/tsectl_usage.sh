@@ -2,9 +2,10 @@
 # tsectl's own contract, without a bus: help needs no bus (per command too), usage errors exit 2
 # naming what is wrong (and, for ranges, the unit and the range), a bad trajectory file is refused
 # before the bus is touched (naming FILE:LINE), no CAN interface exits 1, progress output in a log
-# is a few plain lines.
+# is a few plain lines.  tsectl_usage.sh TSECTL VERSION (the project's, for --version).
 set -u
 T=$1
+TSE_VERSION=$2
 . "$(dirname "$0")/../support/check.sh"
 
 "$T" --help >"$tmp/e"; check "--help prints usage" grep -q "usage: tsectl" "$tmp/e"
@@ -88,4 +89,15 @@ if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then
   "$T" --iface nosuchcan0 --node 1 path "$tmp/wp.csv" --plot "$tmp/p.png" >/dev/null 2>"$tmp/e"; rc=$?
   check "path --plot with matplotlib here reaches the bus (exit 1 here)" test $rc -eq 1
 fi
+# info (issue 27 pt 4): the version and the rates; --version needs nothing.
+"$T" --version >"$tmp/e" 2>&1; rc=$?
+check "--version exits 0 with tsectl's version" test $rc -eq 0 -a "$(cat "$tmp/e")" = "tsectl $TSE_VERSION"
+"$T" help info >"$tmp/e" 2>&1; rc=$?
+check "info help needs no bus (exit 0)" test $rc -eq 0
+check "info help says what a firmware older than INFO gets" grep -q "the others judge at the built-in rates" "$tmp/e"
+"$T" --iface nosuchcan0 --node 1 info --yaml >/dev/null 2>"$tmp/e"; rc=$?
+check "info with an unknown option exits 2 naming it" test $rc -eq 2
+check "the unknown option is named" grep -q -- "--yaml" "$tmp/e"
+"$T" --iface nosuchcan0 --node 1 info --json >/dev/null 2>"$tmp/e"; rc=$?
+check "info --json reaches the bus (exit 1 here)" test $rc -eq 1
 check_done

@@ -29,7 +29,7 @@ static void test_state_table(void **state)
         {PM_ENABLE, "arrrrrr"},      {PM_DISABLE, "ararraa"},     {PM_HOME, "rrarrrr"},
         {PM_CLEAR_FAULT, "rrrrraa"}, {PM_POSE_A, "-------"},      {PM_MOVE_COMMIT, "rraarrr"},
         {PM_TRAJ_COMMIT, "rrarrrr"}, {PM_PARAM_GET, "aaaaaaa"},   {PM_PARAM_SET, "arrrraa"},
-        {PM_PARAM_SAVE, "arrrraa"},
+        {PM_PARAM_SAVE, "arrrraa"},  {PM_INFO_GET, "aaaaaaa"},
     };
     for (size_t r = 0; r < sizeof rows / sizeof rows[0]; ++r) {
         for (size_t k = 0; k < sizeof states / sizeof states[0]; ++k) {
@@ -65,6 +65,11 @@ static void test_state_table(void **state)
                 send(PM_PARAM_SAVE, v);
                 break;
             }
+            case PM_INFO_GET: {
+                const int32_t v[1] = {0};
+                send(PM_INFO_GET, v);
+                break;
+            }
             case PM_POSE_A: {
                 const int32_t v[3] = {s, 0, 0};
                 send(PM_POSE_A, v);
@@ -88,12 +93,12 @@ static void test_state_table(void **state)
             }
         }
     }
-    /* Boot accepts nothing but e-stop and parameter reads. */
+    /* Boot accepts nothing but e-stop, parameter reads and INFO_GET. */
     for (int m = 0; m < PM_COUNT; ++m) {
         if (proto_table[m].dir != PROTO_TO_CONTROLLER)
             continue;
         const fw_reason r = fw_command_allowed((proto_msg)m, FW_STATE_BOOT);
-        const int ok = m == PM_ESTOP || m == PM_HOST_HEARTBEAT || m == PM_PARAM_GET;
+        const int ok = m == PM_ESTOP || m == PM_HOST_HEARTBEAT || m == PM_PARAM_GET || m == PM_INFO_GET;
         assert_int_equal(r == FW_REASON_NONE, ok);
     }
 }

@@ -56,6 +56,11 @@ plan_waypoint waypoint(double x, double y, double z, double roll, double pitch, 
 
 judged judge_rows(const fw_param_set *set, const plan *p, const double pose0[6])
 {
+    return judge_rows_at(set, FW_RATES_BUILT_IN, p, pose0);
+}
+
+judged judge_rows_at(const fw_param_set *set, fw_rates rates, const plan *p, const double pose0[6])
+{
     fw_param_set d;
     if (!set) {
         fw_params_default(&d);
@@ -66,8 +71,8 @@ judged judge_rows(const fw_param_set *set, const plan *p, const double pose0[6])
     tse_geometry g;
     fw_limits lim;
     tse_ik_result ik;
-    if (fw_limits_from_params(set, FW_STEP_HZ, FW_SEGMENT_HZ, &g, &lim) != 0 || tse_ik(&g, pose0, NULL, &ik) != TSE_OK ||
-        traj_checker_start(&c, set, pose0, ik.q) != 0) {
+    if (fw_limits_from_params(set, rates.step_hz, rates.segment_hz, &g, &lim) != 0 ||
+        tse_ik(&g, pose0, NULL, &ik) != TSE_OK || traj_checker_start(&c, set, rates, pose0, ik.q) != 0) {
         j.refused_row = 0;
         return j;
     }

@@ -3,6 +3,7 @@
 #ifndef PLAN_SUPPORT_H
 #define PLAN_SUPPORT_H
 
+#include "fw/limits.h"
 #include "plan/plan.h"
 
 /* Plans wp[0..n) under the default parameters (set may be NULL) with options o (NULL: defaults).
@@ -20,8 +21,10 @@ typedef struct {
     double v_peak, a_peak;
 } judged;
 
-/* Every row of p through the controller's validator from rest at the first waypoint (its slides
- * solved here), with each row's own worst demand. */
+/* Every row of p through the validator of a controller at the built-in rates from rest at the first
+ * waypoint (its slides solved here), with each row's own worst demand. */
 judged judge_rows(const fw_param_set *set, const plan *p, const double pose0[6]);
+/* The same for a controller at rates r. */
+judged judge_rows_at(const fw_param_set *set, fw_rates r, const plan *p, const double pose0[6]);
 
 #endif

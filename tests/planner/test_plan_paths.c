@@ -108,6 +108,39 @@ static void test_random_paths(void **state)
     printf("# all sets: %.1f %% of rows near a limit\n", 100.0 * (double)near / (double)mid);
 }
 
+/* Planned for a controller at 100 kHz step interrupts (INFO's rates, not the built-in 200 kHz): its
+ * step generator allows 0.9 x (100 - 2) steps per 1 ms segment at 1.28M steps/m, 0.06890625 m/s,
+ * half the built-in rates' 0.13921875.  A 20 cm rise reaches that speed: its plan keeps to the lower
+ * limit (every row accepted at 100 kHz), takes longer (1.03 s against 0.83 s), and the plan made for
+ * 200 kHz is refused there. */
+static void test_plans_at_the_controllers_rates(void **state)
+{
+    (void)state;
+    const plan_waypoint wp[2] = {waypoint(0, 0, 0.95, 0, 0, 0), waypoint(0, 0, 1.15, 0, 0, 0)};
+    const fw_rates slow = {100000, 1000};
+    plan_options o;
+    plan_options_default(&o);
+    plan_result r;
+    plan *fast = make_plan(NULL, wp, 2, &o, &r);
+    assert_non_null(fast);
+    o.rates = slow;
+    plan *p = make_plan(NULL, wp, 2, &o, &r);
+    assert_non_null(p);
+    plan_stats st_fast, st;
+    assert_int_equal(plan_measure(fast, &st_fast), 0);
+    assert_int_equal(plan_measure(p, &st), 0);
+    assert_true(fabs(st_fast.v_limit - 0.13921875) < 1e-12);
+    assert_true(fabs(st.v_limit - 0.06890625) < 1e-12);
+    const judged j = judge_rows_at(NULL, slow, p, wp[0].pose);
+    assert_int_equal(j.refused_row, -1);
+    assert_true(j.v_peak > 0.9 && j.v_peak <= 1.0); /* at the lower limit, within it */
+    assert_true(judge_rows_at(NULL, slow, fast, wp[0].pose).refused_row >= 0);
+    printf("# a 20 cm rise: %.3f s at 200 kHz steps, %.3f s at 100 kHz\n", plan_duration(fast), plan_duration(p));
+    assert_true(plan_duration(p) > plan_duration(fast) + 0.1);
+    free_plan(fast);
+    free_plan(p);
+}
+
 /* A square's corners are cut, by at most the blend asked (the blend's middle is l |d2 - d1| / 4 from
  * the corner: within it, and the controller's rows lie on it within the rounding). */
 static void test_blend_cuts_corners(void **state)
@@ -393,6 +426,7 @@ int main(void)
         cmocka_unit_test(test_never_returns_refused),
         cmocka_unit_test(test_rows_keep_the_controllers_queue_deep),
         cmocka_unit_test(test_refusals_name_the_waypoint),
+        cmocka_unit_test(test_plans_at_the_controllers_rates),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -89,6 +89,7 @@ static const char *const accepts[PM_COUNT] = {
     [PM_CLEAR_FAULT] = "------AA", [PM_POSE_A] = "-AAAAAAA",      [PM_POSE_B] = "-AAAAAAA",
     [PM_POSE_C] = "-AAAAAAA",      [PM_MOVE_COMMIT] = "---AA---", [PM_TRAJ_COMMIT] = "---AA---",
     [PM_PARAM_GET] = "AAAAAAAA",   [PM_PARAM_SET] = "-A----AA",   [PM_PARAM_SAVE] = "-A----AA",
+    [PM_INFO_GET] = "AAAAAAAA",
 };
 
 /* What the host sends, by kind. */

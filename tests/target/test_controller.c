@@ -181,6 +181,8 @@ static struct {
     unsigned acks, rejects;
     int32_t last_ack[5], last_reject[7];
     int32_t param_id, param_value;
+    int32_t info[5]; /* the last INFO: major, minor, patch, step_hz, segment_hz */
+    unsigned infos;
     unsigned undecodable;
     uint8_t seq;
 } host;
@@ -244,6 +246,10 @@ static void host_drain(void)
         case PM_PARAM_VALUE:
             host.param_id = m.v[0];
             host.param_value = m.v[1];
+            break;
+        case PM_INFO:
+            memcpy(host.info, m.v, sizeof host.info);
+            ++host.infos;
             break;
         case PM_MOVE_INFO: /* after a move's ACK: how it starts, what set its pace */
         case PM_TRAJ_END:  /* how a trajectory ended */
@@ -430,6 +436,14 @@ static void boot_and_params(void)
     run(5);
     TT_CHECK(host.statuses > 0 && host.state == FW_STATE_DISABLED && host.fault == FW_FAULT_NONE);
     TT_CHECK(!plant.enabled);
+    /* INFO: the project's version (CMake's, given this test) and the rates configured above. */
+    const unsigned acks = host.acks;
+    const int32_t page[1] = {0};
+    host_send(PM_INFO_GET, page);
+    run(2);
+    TT_CHECK(acked(PM_INFO_GET, acks) && host.infos == 1);
+    TT_CHECK(host.info[0] == TSE_EXPECT_MAJOR && host.info[1] == TSE_EXPECT_MINOR && host.info[2] == TSE_EXPECT_PATCH);
+    TT_CHECK(host.info[3] == (int32_t)STEP_HZ && host.info[4] == (int32_t)SEGMENT_HZ);
     /* STATUS every 10 ms, so that short states show; two switches elsewhere. */
     param_set(FP_STATUS_MS, 10);
     param_set(FP_HOME_SW_2, 205000);

@@ -22,6 +22,11 @@ sleep 0.5
 tsectl --iface vcan0 --node 1 heartbeat &
 hb=$!
 
+# INFO: the firmware's version (the project's: tsectl's own) and the rates it runs, the built-in ones.
+$T info >out.txt 2>&1; rc=$?
+sed -n 's/^/  | /;1p' out.txt
+check "info says the firmware's version and the simulator's rates" \
+  "[ $rc -eq 0 ] && grep -q \"^node 1: firmware $(tsectl --version | cut -d' ' -f2), 200000 Hz step interrupts, 1000 Hz control segments\" out.txt"
 $T params get slide_vmax >out.txt 2>&1
 check "the simulator took its SI parameter file (slide_vmax = 0.14 m/s)" "grep -q 'slide_vmax = 0.14 m/s' out.txt"
 $T params set plate_vmax 0.25 >/dev/null 2>&1 && $T params save >out.txt 2>&1; rc=$?
@@ -256,6 +261,39 @@ tsectl --iface vcan0 --node 5 --timeout "$answer_ms" watch --count 12 >out.txt 2
 check "two controllers on node 5 are detected (a warning naming the node)" \
   "grep -q 'two controllers seem to answer as node 5' out.txt"
 kill -INT $twin1 $twin2
+
+# A controller at other rates than the built-in ones (a board built otherwise): tse-sim at 100 kHz
+# step interrupts.  INFO says so, and tsectl checks a file at them: 6 cm along X in 1 s brings a
+# slide above the step generator's limit at 100 kHz, 0.9 x (100 - 2) steps a 1 ms segment /
+# 1.28M steps/m = 0.0689 m/s, and below it at 200 kHz (0.1392 m/s: tse-kin check, offline at the
+# built-in rates, accepts it), so tsectl refuses it naming the step generator and sends nothing.
+tse-sim --iface vcan0 --node 3 --step-hz 100000 >rates.log 2>&1 &
+slow=$!
+sleep 0.5
+tsectl --iface vcan0 --node 3 heartbeat &
+hb3=$!
+T3="tsectl --iface vcan0 --node 3 --timeout $answer_ms"
+$T3 info >out.txt 2>&1; rc=$?
+sed -n 's/^/  | /;1p' out.txt
+check "info says the other rates (100000 Hz step interrupts)" \
+  "[ $rc -eq 0 ] && grep -q 'node 3: firmware .*, 100000 Hz step interrupts, 1000 Hz control segments' out.txt"
+$T3 enable >/dev/null 2>&1; $T3 home --wait >out.txt 2>&1; rc=$?
+check "the controller at 100 kHz homes" "[ $rc -eq 0 ]"
+i=0
+while [ $i -lt 40 ] && ! grep -q 'at rest: plate' rates.log; do sleep 0.25; i=$((i + 1)); done
+zhome=$(grep 'at rest: plate' rates.log | tail -1 | awk '{ print $7 }')
+awk -v z="$zhome" 'BEGIN { print "t,x,y,z,roll,pitch,yaw"; n = 100; for (i = 0; i < n; ++i) { s = (i + 1) / n;
+      e = s*s*s*(10 - 15*s + 6*s*s); printf "%.3f,%.6f,0,%s,0,0,0\n", s, 0.06 * e, z } }' >sweep.csv
+tse-kin check sweep.csv >out.txt 2>&1; rc=$?
+check "tse-kin check (the built-in rates) accepts the sweep" "[ $rc -eq 0 ]"
+before=$(grep -c 'motion accepted' rates.log)
+$T3 trajectory sweep.csv >out.txt 2>&1; rc=$?
+sed 's/^/  | /' out.txt
+check "tsectl refuses the sweep at node 3's rates: the step generator's limit, nothing sent" \
+  "[ $rc -eq 3 ] && grep -q 'would be refused; nothing was sent: rejected: timing' out.txt && grep -q 'step generator' out.txt"
+check "no motion for the refused sweep" "[ \$(grep -c 'motion accepted' rates.log) -eq $before ]"
+kill $hb3
+kill -INT $slow
 
 # Figures.
 echo "figure: command taken to first step, per motion in order (homing, moves, trajectory; simulated time, ms): $(awk '/first step/ { printf "%s ", $4 }' sim.log)"

@@ -7,6 +7,7 @@
 #ifndef FW_LIMITS_H
 #define FW_LIMITS_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "fw/move.h"
@@ -14,10 +15,22 @@
 #include "fw/stepgen.h"
 #include "tse/geometry.h"
 
-/* The configuration tse-fw (board/main.c) and tse-sim run: 200 kHz step interrupts and 1 kHz
- * control segments.  Host tools judge a set or a path with these, as the controller will. */
+/* The configuration tse-fw (board/main.c) and tse-sim run by default: 200 kHz step interrupts and
+ * 1 kHz control segments.  A controller reports the rates it runs in INFO; host tools judge a set
+ * or a path at those, and at these built-in ones only offline or for a firmware older than INFO. */
 #define FW_STEP_HZ 200000u
 #define FW_SEGMENT_HZ 1000u
+
+/* A controller's rates: step interrupts and control segments per second (fw_config's). */
+typedef struct {
+    uint32_t step_hz, segment_hz;
+} fw_rates;
+#define FW_RATES_BUILT_IN ((fw_rates){FW_STEP_HZ, FW_SEGMENT_HZ})
+
+/* Whether a controller runs at rates r (fw_init refuses others): a control segment of whole
+ * microseconds (trajectory time is kept in them) and of whole step interrupts, and both rates
+ * within INFO's fields, which report them. */
+bool fw_rates_run(fw_rates r);
 
 /* Planned slide motion keeps this much of the step generator's capacity in hand: a segment's
  * steps are its setpoints rounded to whole steps, so a slide at the speed limit may ask one step

@@ -37,6 +37,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "fw/limits.h"
 #include "fw/params.h"
 #include "fw/proto_table.h"
 #include "fw/traj.h"
@@ -94,6 +95,8 @@ typedef struct {
                       * trajectory's jerk (its rows are straight: each changes the speed at once, and
                       * the validator judges acceleration over 10 ms); a limit smooths the time law to
                       * it (plan_jerk_smooth) */
+    fw_rates rates;  /* the controller's rates, which its limits follow (INFO's; by default
+                      * FW_RATES_BUILT_IN, for planning offline) */
 } plan_options;
 
 void plan_options_default(plan_options *o);
@@ -101,7 +104,7 @@ void plan_options_default(plan_options *o);
 typedef enum {
     PLAN_OK = 0,
     PLAN_BAD_INPUT,  /* the options or the waypoints themselves (what: in `why`) */
-    PLAN_PARAMS,     /* the controller would refuse the parameter set */
+    PLAN_PARAMS,     /* the controller would refuse the parameter set (or cannot run at the rates) */
     PLAN_WORKSPACE,  /* a waypoint, or the path between two, leaves the workspace */
     PLAN_TIME,       /* a waypoint's time cannot be kept */
     PLAN_TOO_LONG,   /* more grid points than PLAN_GRID_MAX, or memory short (plan_bytes) */
@@ -163,8 +166,8 @@ int plan_retries(const plan *p);
 int plan_row_waypoint(const plan *p, double t);
 /* The first row's time [s]: where the motion starts. */
 double plan_hold(const plan *p);
-/* The rows' least spacing [s] (the controller's queue and its stop ramp). */
-double plan_row_spacing_min(const fw_param_set *s);
+/* The rows' least spacing [s] (the controller's queue and its stop ramp) under set s at rates r. */
+double plan_row_spacing_min(const fw_param_set *s, fw_rates r);
 /* The slides at the first waypoint (where the validator starts). */
 void plan_start_slides(const plan *p, double q[6]);
 

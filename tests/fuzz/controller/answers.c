@@ -1,6 +1,7 @@
 #include "oracle_model.h"
 
 #include <math.h>
+#include <stdio.h>
 
 #include "fuzz_target.h"
 #include "plant_check.h"
@@ -13,6 +14,7 @@ static const char *const accepts[PM_COUNT] = {
     [PM_CLEAR_FAULT] = "------AA",  [PM_POSE_A] = "-AAAAAAA",      [PM_POSE_B] = "-AAAAAAA",
     [PM_POSE_C] = "-AAAAAAA",       [PM_MOVE_COMMIT] = "---AA---", [PM_TRAJ_COMMIT] = "---AA---",
     [PM_PARAM_GET] = "AAAAAAAA",    [PM_PARAM_SET] = "-A----AA",   [PM_PARAM_SAVE] = "-A----AA",
+    [PM_INFO_GET] = "AAAAAAAA",
 };
 
 /* PARAM_SET: what clears homed when it changes (docs/protocol.md); the margins and limits keep it. */
@@ -256,6 +258,19 @@ static void judge_params(oracle_model *o, rig *r, const oracle_outputs *out, boo
     plant_check_reset(r, &o->params);
 }
 
+/* INFO_GET (page 0, the only one the table takes): its ACK, then INFO at once with the project's
+ * version (TSE_EXPECT_VERSION, as CMake has it) and the rates the rig configured the controller
+ * with.  That it changed nothing is judged with the refusals' snapshot (oracle.c). */
+static void judge_info(const rig *r, const oracle_outputs *out)
+{
+    static int version[3] = {-1, -1, -1};
+    if (version[0] < 0)
+        FUZZ_CHECK(sscanf(TSE_EXPECT_VERSION, "%d.%d.%d", &version[0], &version[1], &version[2]) == 3);
+    FUZZ_CHECK(out->n_ack == 1 && out->n_info == 1 && out->info_at == out->ack_at + 1);
+    FUZZ_CHECK(out->info[0] == version[0] && out->info[1] == version[1] && out->info[2] == version[2]);
+    FUZZ_CHECK(out->info[3] == r->cfg.step_hz && out->info[4] == r->cfg.segment_hz);
+}
+
 /* The effect an accepted command must have had (strict: no e-stop interrupt in between), and
  * what it tells the model. */
 static void judge_effect(oracle_model *o, rig *r, proto_msg m, bool strict)
@@ -321,6 +336,8 @@ static void judge_command(oracle_model *o, rig *r, const oracle_outputs *out, bo
         check_reject_details(out->rej, was, !hooked);
     if (m != PM_PARAM_GET && m != PM_PARAM_SET)
         FUZZ_CHECK(out->n_pv == 0);
+    if (m != PM_INFO_GET)
+        FUZZ_CHECK(out->n_info == 0);
     /* A row of the trajectory that ended last is refused as such whatever the state. */
     if (m == PM_TRAJ_COMMIT) {
         int64_t field = 0;
@@ -362,6 +379,9 @@ static void judge_command(oracle_model *o, rig *r, const oracle_outputs *out, bo
     case PM_PARAM_SAVE:
         judge_params(o, r, out, hooked);
         break;
+    case PM_INFO_GET:
+        judge_info(r, out);
+        break;
     default:
         FUZZ_CHECK(!"a command without a rule");
     }
@@ -377,7 +397,7 @@ void oracle_judge_answers(oracle_model *o, rig *r, const oracle_outputs *out, bo
     case WIRE_OWN_TRAFFIC:
     case WIRE_BROADCAST:
         /* Not ours, or a broadcast: nothing answers (only ESTOP and STOP are honoured). */
-        FUZZ_CHECK(out->n_ack + out->n_rej + out->n_pv == 0);
+        FUZZ_CHECK(out->n_ack + out->n_rej + out->n_pv + out->n_info == 0);
         if (w->kind == WIRE_BROADCAST && w->well_formed && !hooked &&
             (w->msg == PM_ESTOP || (w->msg == PM_STOP && o->before.in.state != FW_STATE_BOOT)))
             judge_effect(o, r, w->msg, true);
@@ -387,7 +407,7 @@ void oracle_judge_answers(oracle_model *o, rig *r, const oracle_outputs *out, bo
     case WIRE_RANGE: {
         /* Malformed: one REJECT naming why, with the sequence number when the frame carries one
          * (a bad field other than it does not make it another's), 0 when it has none. */
-        FUZZ_CHECK(out->n_rej == 1 && out->n_ack == 0 && out->n_pv == 0);
+        FUZZ_CHECK(out->n_rej == 1 && out->n_ack == 0 && out->n_pv == 0 && out->n_info == 0);
         const int64_t *v = out->rej;
         FUZZ_CHECK(v[0] == w->function && v[1] == (w->kind == WIRE_RANGE ? w->seq : 0));
         const fw_reason want = w->kind == WIRE_UNKNOWN      ? FW_REASON_UNKNOWN

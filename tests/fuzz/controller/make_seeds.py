@@ -2,9 +2,9 @@
 """Writes the controller fuzz target's seed corpus in its byte encoding (fuzz_controller.c's header
 comment; change both together): well-formed sessions that reach every state and every command -
 enable, home, staged poses near the home pose and MOVE_COMMIT (by duration, by speed, blended),
-trajectories streamed with TRAJ_COMMIT, PARAM_SET/GET/SAVE and a power cycle, STOP, ESTOP (command,
-input, interrupt inside the controller), CLEAR_FAULT, DISABLE, the watchdog, limit switches, bus-off,
-the flash failing - and refusals of every kind.
+trajectories streamed with TRAJ_COMMIT, PARAM_SET/GET/SAVE and a power cycle, INFO_GET, STOP, ESTOP
+(command, input, interrupt inside the controller), CLEAR_FAULT, DISABLE, the watchdog, limit switches,
+bus-off, the flash failing - and refusals of every kind.
     make_seeds.py tests/fuzz/controller/corpus
 The committed corpus is these seeds and the inputs a fuzzing run added to them that brought new
 coverage, merged in: fuzz_controller -merge=1 tests/fuzz/controller/corpus WORK_DIR.
@@ -28,7 +28,7 @@ NEXT, SAME, RAW, PREV = 0, 1, 2, 3
 HARNESS, FAST, FAST_BOARD, FAST_ON_SWITCH = 0, 1, 2, 3
 # Host-to-controller messages in table order (the MSG operation's index).
 MSGS = ["ESTOP", "STOP", "HOST_HEARTBEAT", "ENABLE", "DISABLE", "HOME", "CLEAR_FAULT", "POSE_A",
-        "POSE_B", "POSE_C", "MOVE_COMMIT", "TRAJ_COMMIT", "PARAM_GET", "PARAM_SET", "PARAM_SAVE"]
+        "POSE_B", "POSE_C", "MOVE_COMMIT", "TRAJ_COMMIT", "PARAM_GET", "PARAM_SET", "PARAM_SAVE", "INFO_GET"]
 PARAM = {"L": 0, "s_min": 7, "s_max": 8, "mu_min": 9, "steps_per_m": 11, "slide_vmax": 12,
          "slide_amax": 13, "plate_vmax": 14, "step_rate_max": 19, "watchdog_ms": 20,
          "status_ms": 21, "telemetry_ms": 22, "homing_speed": 23, "homing_backoff": 24,
@@ -269,6 +269,11 @@ def seeds():
         .raw(0x0A1, [9, 0xFF, 0xFF, 0x7F, 0, 0, 0]).raw(0x111, [1, 2, 3, 4]).raw(0x072, [5]) \
         .raw(0x201, [0] * 8).raw(0x060, [5]).raw(0x031, [0] * 8).raw(0x0E1, [3, 0, 0, 0, 0, 0, 3], 7) \
         .raw(0x0F1, [], 0).raw(0x010, [1], 1).raw(0x011, [], 0)
+    # INFO_GET at rest, moving, in e-stop; a page no firmware has (a flipped bit of the page: range),
+    # another length, a broadcast.
+    new("info", reaches=("moving", "estop")).msg("INFO_GET", b"\x00").home().pose(dx=3000).move(ms=400) \
+        .ms(50).msg("INFO_GET", b"\x00").msg("INFO_GET", b"\x00", flip=12).msg("INFO_GET", b"\x00", flip=11) \
+        .cmd("ESTOP").msg("INFO_GET", b"\x00").msg("INFO_GET", b"\x00", node=2).rest()
     new("msg_fields").msg("ENABLE", b"\x05").msg("MOVE_COMMIT", b"\x07\x05\x10\x00\x00\x00") \
         .msg("TRAJ_COMMIT", b"\x07\x00\x00\x00\x00\x03\x07") \
         .msg("POSE_A", b"\x01\xff\xff\x7f\x00\x00\x00", flip=30) \

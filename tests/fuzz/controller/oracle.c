@@ -137,6 +137,7 @@ static void read_outputs(rig *r, oracle_outputs *out)
         switch (m) {
         case PM_ACK:
             ++out->n_ack;
+            out->ack_at = (int)i;
             memcpy(out->ack, v, sizeof v);
             check_queue_fields(v[2], v[3]);
             summary_answer((uint8_t)v[0], 0, FW_REASON_NONE);
@@ -150,6 +151,11 @@ static void read_outputs(rig *r, oracle_outputs *out)
         case PM_PARAM_VALUE:
             ++out->n_pv;
             memcpy(out->pv, v, sizeof v);
+            break;
+        case PM_INFO:
+            ++out->n_info;
+            out->info_at = (int)i;
+            memcpy(out->info, v, sizeof v);
             break;
         case PM_STATUS:
             if (!FUZZ_BOARD_TIME) /* (else judged as it was sent: oracle_sent) */
@@ -347,14 +353,17 @@ void oracle_after_frame(rig *r)
      * the frame: the state the frame was judged in is not the snapshot's. */
     const bool hooked = r->hook_fired_in_feed || o.cut_pending || r->ticks_in_feed;
     oracle_judge_answers(&o, r, &out, hooked);
-    if (out.n_rej && !hooked) {
-        /* Nothing of a refused command is applied (a content refusal spends its number). */
+    /* Nothing of a refused command is applied (a content refusal spends its number), and nothing
+     * of INFO_GET, which only asks. */
+    const bool asks = w->kind == WIRE_COMMAND && w->msg == PM_INFO_GET;
+    if ((out.n_rej || asks) && !hooked) {
         snapshot after;
         snapshot_take(r, &after);
         const char *what = "";
         if (!snapshot_same(&o.before, &after, o.spent_now, r->steps_in_feed, &what)) {
-            fprintf(stderr, "refused frame 0x%03x changed %s\n", (unsigned)(w->function << 4), what);
-            FUZZ_CHECK(!"a refused frame changed the controller");
+            fprintf(stderr, "%s frame 0x%03x changed %s\n", asks ? "INFO_GET" : "refused", (unsigned)(w->function << 4),
+                    what);
+            FUZZ_CHECK(!"a refused frame, or INFO_GET, changed the controller");
         }
     }
     observe(r, false);
@@ -365,7 +374,7 @@ void oracle_after_poll(rig *r)
     oracle_outputs out;
     read_outputs(r, &out);
     /* No frame, no answer: an answer here would be a second one to an earlier frame. */
-    FUZZ_CHECK(out.n_ack + out.n_rej + out.n_pv == 0);
+    FUZZ_CHECK(out.n_ack + out.n_rej + out.n_pv + out.n_info == 0);
     observe(r, false);
 }
 
@@ -375,7 +384,7 @@ void oracle_event(rig *r)
         suspect_zero(r);
     oracle_outputs out;
     read_outputs(r, &out);
-    FUZZ_CHECK(out.n_ack + out.n_rej + out.n_pv == 0);
+    FUZZ_CHECK(out.n_ack + out.n_rej + out.n_pv + out.n_info == 0);
     observe(r, false);
 }
 

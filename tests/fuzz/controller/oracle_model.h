@@ -58,10 +58,12 @@ typedef struct oracle_model {
     uint8_t zero_suspect;
 } oracle_model;
 
-/* The answers and parameter values one poll sent (the last of each kind). */
+/* The answers, parameter values and INFO one poll sent (the last of each kind), and where the
+ * last ACK and INFO stood among the frames it sent. */
 typedef struct {
-    int n_ack, n_rej, n_pv;
-    int64_t ack[PROTO_MAX_FIELDS], rej[PROTO_MAX_FIELDS], pv[PROTO_MAX_FIELDS];
+    int n_ack, n_rej, n_pv, n_info;
+    int64_t ack[PROTO_MAX_FIELDS], rej[PROTO_MAX_FIELDS], pv[PROTO_MAX_FIELDS], info[PROTO_MAX_FIELDS];
+    int ack_at, info_at;
 } oracle_outputs;
 
 /* Judges the answers `out` to the frame o->wf, fed with the controller in o->before, and updates
