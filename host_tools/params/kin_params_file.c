@@ -112,7 +112,7 @@ void kin_params_describe_invalid(const kin_param_values *p, tse_param_id bad, co
 }
 
 
-static void to_tse(const kin_param_values *p, tse_params *t)
+void kin_params_to_tse(const kin_param_values *p, tse_params *t)
 {
     t->L = p->v[TSE_PARAM_L];
     t->k1 = p->v[TSE_PARAM_K1];
@@ -156,7 +156,7 @@ static kin_params_outcome adopt(const param_reading *r, const char *name, kin_pa
     }
     /* A design is judged here; a controller's set, already judged, keeps these rules (kin_params_file.h). */
     tse_params t;
-    to_tse(&next, &t);
+    kin_params_to_tse(&next, &t);
     const tse_param_id bad = tse_params_check(&t);
     if (bad != TSE_PARAM_OK) {
         kin_params_describe_invalid(&next, bad, name, "", err, errlen);

@@ -58,6 +58,9 @@ typedef struct {
  * returns how many. */
 int kin_param_keys(const kin_param_key_def **keys);
 
+/* The values as the double build's tse_params. */
+void kin_params_to_tse(const kin_param_values *p, tse_params *t);
+
 /* The prototype's values (tse_params_default of the double build), no line. */
 void kin_params_default(kin_param_values *p);
 

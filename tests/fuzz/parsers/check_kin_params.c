@@ -17,21 +17,6 @@
 
 static const char NAME[] = "fuzz.params";
 
-static void to_tse(const kin_param_values *p, tse_params *t)
-{
-    t->L = p->v[TSE_PARAM_L];
-    t->k1 = p->v[TSE_PARAM_K1];
-    t->eta = p->v[TSE_PARAM_ETA];
-    t->k3 = p->v[TSE_PARAM_K3];
-    t->k4 = p->v[TSE_PARAM_K4];
-    t->alpha_min = p->v[TSE_PARAM_ALPHA_MIN];
-    t->alpha_max = p->v[TSE_PARAM_ALPHA_MAX];
-    t->s_min = p->v[TSE_PARAM_S_MIN];
-    t->s_max = p->v[TSE_PARAM_S_MAX];
-    t->mu_min = p->v[TSE_PARAM_MU_MIN];
-    t->nu_min = p->v[TSE_PARAM_NU_MIN];
-}
-
 /* The controller's set a kinematic base stands for: its values in micro-units, rounded. */
 static void base_set(const kin_param_values *p, fw_param_set *s)
 {
@@ -117,7 +102,7 @@ void check_kin_params(const char *data, size_t size, unsigned opt)
             FUZZ_CHECK(fabs(p.v[id] * 1e6 - (double)r.set.v[fid]) <= (p.degrees[id] ? 0.5 + 1e-6 : 0.5));
     }
     tse_params t;
-    to_tse(&p, &t);
+    kin_params_to_tse(&p, &t);
     FUZZ_CHECK(tse_params_check(&t) == TSE_PARAM_OK);
     check_reprint(&p, judge);
 }
