@@ -141,7 +141,10 @@ static void boot_line(const board_state *b)
     board_bootline_dec(TSE_BOARD_NODE);
     board_bootline_puts(": boot faults ");
     board_bootline_hex(b->boot_faults);
-    if (b->boot_faults & BOOT_FAULT_CLOCK) {
+    if ((b->boot_faults & BOOT_FAULT_CLOCK) && b->clocks.crystal.verdict > HSE_CHECK_OK) {
+        board_bootline_puts("; ");
+        hse_check_say(&b->clocks.crystal, board_bootline_puts);
+    } else if (b->boot_faults & BOOT_FAULT_CLOCK) {
         board_bootline_puts("; clock: no ");
         board_bootline_puts(b->clocks.failed);
     }
@@ -172,7 +175,8 @@ int main(void)
     b->clocks = board_clock_init();
     if (b->clocks.failed) {
         b->boot_faults |= BOOT_FAULT_CLOCK;
-        board_fault_note(BOARD_FAULT_TIMEOUT, b->clocks.failed);
+        board_fault_note(b->clocks.crystal.verdict > HSE_CHECK_OK ? BOARD_FAULT_CRYSTAL : BOARD_FAULT_TIMEOUT,
+                         b->clocks.failed);
     }
     board_clock_enable_peripherals();
     board_pins_init();

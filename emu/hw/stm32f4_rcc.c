@@ -9,8 +9,10 @@
  *   LSI (ready at once).
  * - The system clock switch: SWS follows SW once the selected source is ready; HSE and HSI
  *   cannot be turned off while they feed SYSCLK or the running PLL.
- * - The clock tree: HCLK, PCLK1, PCLK2 and the APB1 timer clock (PCLK1, doubled when APB1 is
- *   divided) as QEMU clocks from SW/PLLCFGR/HPRE/PPRE1/PPRE2; the core's clock follows HCLK.
+ * - The clock tree: HCLK, PCLK1, PCLK2 and the APB1 and APB2 timer clocks (PCLKx, doubled when
+ *   APBx is divided) as QEMU clocks from SW/PLLCFGR/HPRE/PPRE1/PPRE2; the core's clock follows
+ *   HCLK.  HSE_RTC, the crystal divided by CFGR's RTCPRE (2..31; 0 and 1: no clock), while HSERDY
+ *   (RM0090 7.3.3; TIM11 measures it on channel 1).
  *   More than 168 MHz on HCLK, 42 MHz on PCLK1 or 84 MHz on PCLK2 is reported as a guest error.
  * - The peripheral clock enables (AHB1ENR, APB1ENR, APB2ENR) as output lines: the SoC gates
  *   each peripheral's registers with them (a peripheral with its clock off reads 0 and ignores
@@ -27,6 +29,7 @@
  */
 #include "qemu/osdep.h"
 #include "qemu/log.h"
+#include "qemu/host-utils.h"
 #include "qemu/timer.h"
 #include "qapi/error.h"
 #include "hw/sysbus.h"
@@ -68,6 +71,8 @@ OBJECT_DECLARE_SIMPLE_TYPE(Stm32f4RccState, STM32F4_RCC)
 #define CSR_IWDGRSTF (1u << 29)
 #define CSR_FLAGS (0xFEu << 24)
 
+#define CFGR_RTCPRE(cfgr) (((cfgr) >> 16) & 0x1F)
+
 #define HSI_HZ 16000000u
 enum { SRC_HSI, SRC_HSE, SRC_PLL, SRC_NONE };
 
@@ -78,7 +83,7 @@ struct Stm32f4RccState {
     QEMUTimer *hse_timer, *pll_timer;
     int pending_reset;          /* what the next reset is (RCC_RESET_*) */
     uint32_t warned_hz;         /* the last HCLK a limit warning was given for */
-    Clock *hclk, *pclk1, *pclk2, *timclk1;
+    Clock *hclk, *pclk1, *pclk2, *timclk1, *timclk2, *hse_rtc;
     qemu_irq ahb1en[32], apb1en[32], apb2en[32];
     /* properties */
     uint32_t hse_hz;
@@ -155,7 +160,8 @@ static void update_clocks(Stm32f4RccState *s)
     const uint64_t hclk = sysclk / ahb_div((cfgr >> 4) & 0xF);
     const unsigned d1 = apb_div((cfgr >> 10) & 7), d2 = apb_div((cfgr >> 13) & 7);
     const uint64_t pclk1 = hclk / d1, pclk2 = hclk / d2;
-    const uint64_t tim1 = d1 == 1 ? pclk1 : 2 * pclk1;
+    const uint64_t tim1 = d1 == 1 ? pclk1 : 2 * pclk1, tim2 = d2 == 1 ? pclk2 : 2 * pclk2;
+    const uint32_t rtcpre = CFGR_RTCPRE(cfgr);
 
     if ((hclk > 168000000 || pclk1 > 42000000 || pclk2 > 84000000) && s->warned_hz != hclk) {
         qemu_log_mask(LOG_GUEST_ERROR,
@@ -167,6 +173,13 @@ static void update_clocks(Stm32f4RccState *s)
     clock_update_hz(s->pclk1, pclk1);
     clock_update_hz(s->pclk2, pclk2);
     clock_update_hz(s->timclk1, tim1);
+    clock_update_hz(s->timclk2, tim2);
+    /* HSE_RTC's period exactly (HSE / 31 is not a whole number of Hz): 2^-32 ns units. */
+    if ((s->regs[R_CR / 4] & CR_HSERDY) && s->hse_hz && rtcpre >= 2) {
+        clock_update(s->hse_rtc, muldiv64(CLOCK_PERIOD_1SEC, rtcpre, s->hse_hz));
+    } else {
+        clock_update(s->hse_rtc, 0);
+    }
 }
 
 /* SWS follows SW when the source selected is ready (RM0090 7.3.3); the tree follows SWS. */
@@ -397,6 +410,8 @@ static void rcc_init(Object *obj)
     s->pclk1 = qdev_init_clock_out(dev, RCC_CLK_PCLK1);
     s->pclk2 = qdev_init_clock_out(dev, RCC_CLK_PCLK2);
     s->timclk1 = qdev_init_clock_out(dev, RCC_CLK_TIMCLK1);
+    s->timclk2 = qdev_init_clock_out(dev, RCC_CLK_TIMCLK2);
+    s->hse_rtc = qdev_init_clock_out(dev, RCC_CLK_HSE_RTC);
     qdev_init_gpio_out_named(dev, s->ahb1en, RCC_GPIO_AHB1EN, 32);
     qdev_init_gpio_out_named(dev, s->apb1en, RCC_GPIO_APB1EN, 32);
     qdev_init_gpio_out_named(dev, s->apb2en, RCC_GPIO_APB2EN, 32);

@@ -1,19 +1,31 @@
 /*
- * STM32F405/407 general-purpose timer TIM2..TIM5 (RM0090 section 18), in place of QEMU's
- * stm32f2xx_timer, which counts at a fixed 1 GHz, never wraps CNT at ARR, has no one-pulse mode
- * and ignores URS and the prescaler's preload.
+ * STM32F405/407 general-purpose timer TIM2..TIM5 (RM0090 section 18), and TIM11 (section 19) as
+ * far as its crystal measurement goes, in place of QEMU's stm32f2xx_timer, which counts at a
+ * fixed 1 GHz, never wraps CNT at ARR, has no one-pulse mode and ignores URS and the prescaler's
+ * preload.
  *
- * Modelled, up-counting: the counter runs at the "clk" input (the RCC's APB1 timer clock)
- * divided by PSC+1 while CR1.CEN is set; on reaching ARR it wraps to 0 with an update event
- * (UEV) that loads PSC (always preloaded) and ARR (when ARPE) from their preload registers and
- * sets SR.UIF.  UDIS suppresses the UEV.  EGR.UG reinitialises the counter and the prescaler,
- * loads the preloads, and sets UIF unless URS (or UDIS).  One-pulse mode (OPM) clears CEN at the
- * UEV.  A write to CNT moves the counter.  ARR 0 blocks the counter.  A counter above ARR
- * counts on to its top (16 bits for TIM3/TIM4, 32 for TIM2/TIM5: property "width") and wraps
+ * Modelled, up-counting: the counter runs at the "clk" input (the RCC's APB1 timer clock; the APB2
+ * one for TIM11) divided by PSC+1 while CR1.CEN is set; on reaching ARR it wraps to 0 with an
+ * update event (UEV) that loads PSC (always preloaded) and ARR (when ARPE) from their preload
+ * registers and sets SR.UIF.  UDIS suppresses the UEV.  EGR.UG reinitialises the counter and the
+ * prescaler, loads the preloads, and sets UIF unless URS (or UDIS).  One-pulse mode (OPM) clears
+ * CEN at the UEV.  A write to CNT moves the counter.  ARR 0 blocks the counter.  A counter above
+ * ARR counts on to its top (16 bits for TIM3/TIM4, 32 for TIM2/TIM5: property "width") and wraps
  * without an update.  The interrupt line is SR & DIER over UIF, CC1IF..CC4IF and TIF (a level).
  * A change of the input clock keeps the count reached and goes on at the new rate.
- * Not modelled: down and centre-aligned counting, the capture/compare channels (CCMRx, CCER,
- * CCRx hold what is written; no CCxIF, no output), slave modes and triggers, DMA, CKD.
+ * Input capture on channel 1 from an internal clock, TIM11's TI1 remapped to HSE_RTC (RM0090
+ * section 19, TIM11_OR; the "ti1" clock input, selected where OR[1:0] is the "ti1-rmp"
+ * property): with CCMR1's CC1S = 01 and CCER's CC1E, every IC1PSC-th rising edge of that clock
+ * (1, 2, 4 or 8; counted afresh whenever the channel, OR or the clock changes) latches the
+ * counter into CCR1, at the edge's time in virtual time, and sets CC1IF, or CC1OF as well when
+ * CC1IF was still set; reading CCR1 clears CC1IF; CCR1 of a channel in input mode ignores
+ * writes.  The edges are those of a clock started when the "ti1" clock last changed.  A capture
+ * is computed when a register is read (a guest that polls costs nothing per edge), and timed by
+ * a QEMU timer only while CC1IE is set.
+ * Not modelled: down and centre-aligned counting, falling-edge capture (CC1P, CC1NP: logged),
+ * the input filter and the synchroniser's delay, output compare, channels 2..4 (CCMRx, CCER,
+ * CCRx hold what is written; no CCxIF, no output), capture from a pin, CC1G, slave modes and
+ * triggers, DMA, CKD; TIM11's registers are TIM2..TIM5's (those it lacks are not refused).
  *
  * SPDX-License-Identifier: GPL-2.0-or-later
  */
@@ -55,6 +67,12 @@ OBJECT_DECLARE_SIMPLE_TYPE(Stm32f4TimState, STM32F4_TIM)
 #define CR1_CMS (3u << 5)
 #define CR1_ARPE (1u << 7)
 #define SR_UIF (1u << 0)
+#define SR_CC1IF (1u << 1)
+#define SR_CC1OF (1u << 9)
+#define DIER_CC1IE (1u << 1)
+#define CCER_CC1E (1u << 0)
+#define CCER_CC1P_NP ((1u << 1) | (1u << 3))
+#define NO_RMP UINT32_MAX
 #define SR_IRQ_BITS 0x5Fu /* UIF, CC1IF..CC4IF, TIF */
 #define EGR_UG (1u << 0)
 
@@ -70,7 +88,15 @@ struct Stm32f4TimState {
     uint32_t cnt_base;
     int64_t t_base;
     int64_t next_uev; /* while running and scheduled */
+    /* Channel 1's capture from the "ti1" clock: its edges are ti1_epoch + k periods, k >= 1;
+     * the next capture is at edge ic_edge, time ic_next (INT64_MAX: none). */
+    Clock *ti1;
+    int64_t ti1_epoch;
+    uint64_t ic_edge;
+    int64_t ic_next;
+    bool warned_polarity;
     uint32_t width;
+    uint32_t ti1_rmp; /* OR[1:0] value connecting TI1 to the "ti1" clock; NO_RMP: none */
 };
 
 static uint32_t top(Stm32f4TimState *s)
@@ -106,11 +132,29 @@ static uint64_t counts_to_uev(Stm32f4TimState *s)
     return cnt <= arr ? arr + 1 - cnt : (uint64_t)top(s) - cnt + 1 + arr + 1;
 }
 
+/* The QEMU timer at the next event a guest can see without reading: an update event, or a
+ * capture while its interrupt is enabled. */
+static void arm_timer(Stm32f4TimState *s)
+{
+    if (!s->timer) {
+        return; /* not realized yet */
+    }
+    int64_t t = s->next_uev;
+    if ((s->dier & DIER_CC1IE) && s->ic_next < t) {
+        t = s->ic_next;
+    }
+    if (t == INT64_MAX) {
+        timer_del(s->timer);
+    } else {
+        timer_mod(s->timer, t);
+    }
+}
+
 static void schedule(Stm32f4TimState *s)
 {
     if (!running(s) || s->arr_active == 0) {
-        timer_del(s->timer);
         s->next_uev = INT64_MAX;
+        arm_timer(s);
         return;
     }
     const uint32_t hz = clock_get_hz(s->clk);
@@ -121,7 +165,7 @@ static void schedule(Stm32f4TimState *s)
         ++ns;
     }
     s->next_uev = s->t_base + ns;
-    timer_mod(s->timer, s->next_uev);
+    arm_timer(s);
 }
 
 /* Freezes the count reached as the new base (before anything changes the rate or the count). */
@@ -155,11 +199,72 @@ static void overflow(Stm32f4TimState *s, int64_t t)
     schedule(s);
 }
 
-/* Takes the update events due by now (the QEMU timer may not have run yet). */
+/* ---- channel 1's input capture ---- */
+
+static bool capture_on(Stm32f4TimState *s)
+{
+    return (s->ccer & CCER_CC1E) && (s->ccmr[0] & 3) == 1 && s->ti1_rmp != NO_RMP &&
+           (s->or & 3) == s->ti1_rmp && clock_get(s->ti1) != 0;
+}
+
+static unsigned ic1_prescaler(Stm32f4TimState *s)
+{
+    return 1u << ((s->ccmr[0] >> 2) & 3);
+}
+
+static int64_t edge_time(Stm32f4TimState *s, uint64_t k)
+{
+    const uint64_t ns = clock_ticks_to_ns(s->ti1, k);
+    return ns > (uint64_t)(INT64_MAX - s->ti1_epoch) ? INT64_MAX : s->ti1_epoch + (int64_t)ns;
+}
+
+/* The prescaler counts edges afresh from now (RM0090: it is reset while CC1E is 0; here on any
+ * change of what feeds the capture). */
+static void capture_restart(Stm32f4TimState *s, int64_t now)
+{
+    if (!capture_on(s)) {
+        s->ic_next = INT64_MAX;
+        arm_timer(s);
+        return;
+    }
+    if ((s->ccer & CCER_CC1P_NP) && !s->warned_polarity) {
+        qemu_log_mask(LOG_UNIMP, "stm32f4-tim: capture on falling edges not modelled: rising\n");
+        s->warned_polarity = true;
+    }
+    /* The first edge after now, then the prescaler's count of them. */
+    const uint64_t first = (now > s->ti1_epoch ? clock_ns_to_ticks(s->ti1, now - s->ti1_epoch) : 0) + 1;
+    s->ic_edge = first + ic1_prescaler(s) - 1;
+    s->ic_next = edge_time(s, s->ic_edge);
+    arm_timer(s);
+}
+
+/* The capture at time t: the counter then into CCR1 (every event before t has been taken). */
+static void capture(Stm32f4TimState *s, int64_t t)
+{
+    if (s->sr & SR_CC1IF) {
+        s->sr |= SR_CC1OF;
+    }
+    s->sr |= SR_CC1IF;
+    s->ccr[0] = counter_at(s, t);
+    s->ic_edge += ic1_prescaler(s);
+    s->ic_next = edge_time(s, s->ic_edge);
+    update_irq(s);
+    arm_timer(s);
+}
+
+/* Takes the update events and captures due by now, in their order (the QEMU timer may not have
+ * run yet): a capture reads the counter as of its own time. */
 static void catch_up(Stm32f4TimState *s, int64_t now)
 {
-    while (running(s) && s->next_uev <= now) {
-        overflow(s, s->next_uev);
+    for (;;) {
+        const int64_t uev = running(s) ? s->next_uev : INT64_MAX;
+        if (uev <= now && uev <= s->ic_next) {
+            overflow(s, uev);
+        } else if (s->ic_next <= now) {
+            capture(s, s->ic_next);
+        } else {
+            return;
+        }
     }
 }
 
@@ -167,6 +272,18 @@ static void timer_cb(void *opaque)
 {
     Stm32f4TimState *s = opaque;
     catch_up(s, qemu_clock_get_ns(QEMU_CLOCK_VIRTUAL));
+}
+
+static void ti1_changed(void *opaque, ClockEvent event)
+{
+    Stm32f4TimState *s = opaque;
+    const int64_t now = qemu_clock_get_ns(QEMU_CLOCK_VIRTUAL);
+    if (event == ClockPreUpdate) {
+        catch_up(s, now);
+    } else {
+        s->ti1_epoch = now;
+        capture_restart(s, now);
+    }
 }
 
 static void clk_changed(void *opaque, ClockEvent event)
@@ -209,8 +326,15 @@ static uint64_t tim_read(void *opaque, hwaddr addr, unsigned size)
         return s->psc;
     case R_ARR:
         return s->arr;
-    case R_CCR1 ... R_CCR1 + 12:
-        return s->ccr[(addr - R_CCR1) / 4];
+    case R_CCR1 ... R_CCR1 + 12: {
+        const unsigned ch = (addr - R_CCR1) / 4;
+        /* A channel in input mode: the read clears its CCxIF (RM0090, TIMx_SR). */
+        if ((s->ccmr[ch / 2] >> (8 * (ch % 2))) & 3) {
+            s->sr &= ~(SR_CC1IF << ch);
+            update_irq(s);
+        }
+        return s->ccr[ch];
+    }
     case R_DCR:
         return s->dcr;
     case R_OR:
@@ -247,6 +371,7 @@ static void tim_write(void *opaque, hwaddr addr, uint64_t val, unsigned size)
     case R_DIER:
         s->dier = v & 0x5F5F;
         update_irq(s);
+        arm_timer(s);
         return;
     case R_SR:
         s->sr &= v | ~0x1E5Fu; /* rc_w0: writing 0 clears, writing 1 keeps */
@@ -273,9 +398,11 @@ static void tim_write(void *opaque, hwaddr addr, uint64_t val, unsigned size)
     case R_CCMR1:
     case R_CCMR2:
         s->ccmr[(addr - R_CCMR1) / 4] = v;
+        capture_restart(s, now);
         return;
     case R_CCER:
         s->ccer = v;
+        capture_restart(s, now);
         return;
     case R_CNT:
         s->cnt_base = v & top(s);
@@ -293,9 +420,13 @@ static void tim_write(void *opaque, hwaddr addr, uint64_t val, unsigned size)
             schedule(s);
         }
         return;
-    case R_CCR1 ... R_CCR1 + 12:
-        s->ccr[(addr - R_CCR1) / 4] = v & top(s);
+    case R_CCR1 ... R_CCR1 + 12: {
+        const unsigned ch = (addr - R_CCR1) / 4;
+        if (!((s->ccmr[ch / 2] >> (8 * (ch % 2))) & 3)) { /* read-only in input mode */
+            s->ccr[ch] = v & top(s);
+        }
         return;
+    }
     case R_DCR:
         s->dcr = v & 0x1F1F;
         return;
@@ -303,6 +434,7 @@ static void tim_write(void *opaque, hwaddr addr, uint64_t val, unsigned size)
         return;
     case R_OR:
         s->or = v;
+        capture_restart(s, now);
         return;
     }
     qemu_log_mask(LOG_GUEST_ERROR, "stm32f4-tim: write to 0x%" HWADDR_PRIx "\n", addr);
@@ -327,6 +459,8 @@ static void tim_reset(DeviceState *dev)
     s->arr_active = s->arr;
     s->cnt_base = 0;
     s->t_base = qemu_clock_get_ns(QEMU_CLOCK_VIRTUAL);
+    s->ic_next = INT64_MAX;
+    s->warned_polarity = false;
     schedule(s);
     update_irq(s);
 }
@@ -338,6 +472,8 @@ static void tim_init(Object *obj)
     sysbus_init_mmio(SYS_BUS_DEVICE(obj), &s->iomem);
     sysbus_init_irq(SYS_BUS_DEVICE(obj), &s->irq);
     s->clk = qdev_init_clock_in(DEVICE(obj), "clk", clk_changed, s, ClockPreUpdate | ClockUpdate);
+    s->ti1 = qdev_init_clock_in(DEVICE(obj), "ti1", ti1_changed, s, ClockPreUpdate | ClockUpdate);
+    s->next_uev = s->ic_next = INT64_MAX;
 }
 
 static void tim_realize(DeviceState *dev, Error **errp)
@@ -352,6 +488,7 @@ static void tim_realize(DeviceState *dev, Error **errp)
 
 static Property tim_properties[] = {
     DEFINE_PROP_UINT32("width", Stm32f4TimState, width, 16),
+    DEFINE_PROP_UINT32("ti1-rmp", Stm32f4TimState, ti1_rmp, NO_RMP),
     DEFINE_PROP_END_OF_LIST(),
 };
 

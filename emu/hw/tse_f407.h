@@ -28,6 +28,8 @@
 #define RCC_CLK_PCLK1 "pclk1"      /* APB1 peripherals (bxCAN) */
 #define RCC_CLK_PCLK2 "pclk2"      /* APB2 peripherals (USART1) */
 #define RCC_CLK_TIMCLK1 "timclk1"  /* APB1 timers: PCLK1, twice it when APB1 is divided */
+#define RCC_CLK_TIMCLK2 "timclk2"  /* APB2 timers (TIM11): PCLK2, twice it when APB2 is divided */
+#define RCC_CLK_HSE_RTC "hse-rtc"  /* HSE / RTCPRE while HSE is ready and RTCPRE >= 2, else off */
 /* Enable lines, one per bit of AHB1ENR, APB1ENR and APB2ENR (level = the bit). */
 #define RCC_GPIO_AHB1EN "ahb1en"
 #define RCC_GPIO_APB1EN "apb1en"

@@ -8,7 +8,8 @@
  * RAM keeps its contents over a system reset (watchdog, software, NRST) and is cleared by a
  * power cycle (the "power-cycle" input, which the rig's `reset` pulses).
  *
- * Peripherals: our RCC, PWR, FLASH, GPIOA..E, SYSCFG, EXTI, TIM2..5, IWDG and bxCAN1; QEMU's
+ * Peripherals: our RCC, PWR, FLASH, GPIOA..E, SYSCFG, EXTI, TIM2..5, TIM11 (its channel 1 on
+ * HSE_RTC: the image measures its crystal with it), IWDG and bxCAN1; QEMU's
  * stm32f2xx USART1 (the boot line: serial 0).  The others are QEMU's "unimplemented devices"
  * (read 0, writes ignored, logged with -d unimp).  A peripheral whose RCC enable bit is clear
  * reads 0 and ignores writes (its registers are switched off; a guest error is logged).
@@ -40,6 +41,8 @@
 #define IRQ_FLASH 4
 #define IRQ_CAN1_TX 19
 #define IRQ_USART1 37
+#define IRQ_TIM11 26 /* TIM1_TRG_COM_TIM11 */
+#define TIM11_ADDR 0x40014800
 static const hwaddr gpio_addr[TSE_F407_NUM_GPIO] = {
     0x40020000, 0x40020400, 0x40020800, 0x40020C00, 0x40021000,
 };
@@ -267,6 +270,19 @@ static bool make_peripherals(TseF407SocState *s, Error **errp)
         sysbus_connect_irq(SYS_BUS_DEVICE(s->tim[t]), 0, nvic(s, tim_irq[t]));
     }
 
+    /* TIM11: 16 bits on the APB2 timer clock; TI1 remapped (OR[1:0] = 2) to HSE_RTC. */
+    s->tim11 = qdev_new(TYPE_STM32F4_TIM);
+    object_property_add_child(OBJECT(s), "TIM11", OBJECT(s->tim11));
+    qdev_prop_set_uint32(s->tim11, "width", 16);
+    qdev_prop_set_uint32(s->tim11, "ti1-rmp", 2);
+    qdev_connect_clock_in(s->tim11, "clk", qdev_get_clock_out(s->rcc, RCC_CLK_TIMCLK2));
+    qdev_connect_clock_in(s->tim11, "ti1", qdev_get_clock_out(s->rcc, RCC_CLK_HSE_RTC));
+    if (!sysbus_realize_and_unref(SYS_BUS_DEVICE(s->tim11), errp)) {
+        return false;
+    }
+    map_gated(s, gate++, "TIM11", s->tim11, TIM11_ADDR, RCC_GPIO_APB2EN, 18);
+    sysbus_connect_irq(SYS_BUS_DEVICE(s->tim11), 0, nvic(s, IRQ_TIM11));
+
     if (!(s->iwdg = add(s, TYPE_STM32F4_IWDG, 0x40003000, errp))) {
         return false;
     }
@@ -314,7 +330,7 @@ static void make_unimplemented(void)
         {"CAN2", 0x40006800, 0x400}, {"DAC", 0x40007400, 0x400}, {"TIM1", 0x40010000, 0x400},
         {"TIM8", 0x40010400, 0x400}, {"USART6", 0x40011400, 0x400}, {"ADC", 0x40012000, 0x400},
         {"SDIO", 0x40012C00, 0x400}, {"SPI1", 0x40013000, 0x400}, {"TIM9", 0x40014000, 0x400},
-        {"TIM10", 0x40014400, 0x400}, {"TIM11", 0x40014800, 0x400}, {"GPIOF", 0x40021400, 0x400},
+        {"TIM10", 0x40014400, 0x400}, {"GPIOF", 0x40021400, 0x400},
         {"GPIOG", 0x40021800, 0x400}, {"GPIOH", 0x40021C00, 0x400}, {"GPIOI", 0x40022000, 0x400},
         {"CRC", 0x40023000, 0x400}, {"DMA1", 0x40026000, 0x400}, {"DMA2", 0x40026400, 0x400},
         {"ETH", 0x40028000, 0x1400}, {"OTG_HS", 0x40040000, 0x40000}, {"OTG_FS", 0x50000000, 0x40000},

@@ -28,6 +28,7 @@ struct TseF407SocState {
     DeviceState *rcc, *pwr, *flash, *syscfg, *exti, *iwdg, *can1, *usart1;
     DeviceState *gpio[TSE_F407_NUM_GPIO];
     DeviceState *tim[4]; /* TIM2..TIM5 */
+    DeviceState *tim11;
     MemoryRegion gate_off[TSE_F407_NUM_GATES];
     MemoryRegion *gated[TSE_F407_NUM_GATES];
     const char *gate_name[TSE_F407_NUM_GATES];

@@ -505,6 +505,76 @@ static void can_sleep(void)
     TT_CHECK(CAN->BTR == 0x01230000u);
 }
 
+/* ---- TIM11's channel 1 on HSE_RTC: the crystal measured against the HSI ---- */
+
+#define TIM11 ((tse_tim_regs *)0x40014800u)
+#define TIM11_OR (*(volatile uint32_t *)0x40014850u)
+#define APB2ENR_TIM11 (1u << 18)
+#define CFGR_RTCPRE(n) ((uint32_t)(n) << 16)
+#define SR_CC1OF (1u << 9)
+
+/* Two captures in a row: the counts between them. */
+static uint32_t capture_interval(void)
+{
+    TIM11->SR = 0;
+    (void)TIM11->CCR1;
+    if (wait_for(&TIM11->SR, TIM_SR_CC1IF, TIM_SR_CC1IF, 1000) == UINT32_MAX)
+        return UINT32_MAX;
+    const uint32_t a = TIM11->CCR1;
+    if (TIM11->SR & TIM_SR_CC1IF) /* the read clears it */
+        return UINT32_MAX - 1;
+    if (wait_for(&TIM11->SR, TIM_SR_CC1IF, TIM_SR_CC1IF, 1000) == UINT32_MAX)
+        return UINT32_MAX;
+    return (TIM11->CCR1 - a) & 0xFFFFu;
+}
+
+static void tim11_hse_rtc_capture(void)
+{
+    TSE_RCC->CR |= RCC_CR_HSEON;
+    TT_CHECK(wait_for(&TSE_RCC->CR, RCC_CR_HSERDY, RCC_CR_HSERDY, 20000) != UINT32_MAX);
+    TSE_RCC->APB2ENR |= APB2ENR_TIM11;
+    TIM11->PSC = 0;
+    TIM11->ARR = 0xFFFF;
+    TIM11->EGR = TIM_EGR_UG;
+    TIM11->CCMR1 = 0x1u | 0x3u << 2; /* CC1S = 01: IC1 on TI1; IC1PSC = 11: every 8 events */
+    TIM11->CCER = 1u;                /* CC1E, rising edges */
+    TIM11->CR1 = TIM_CR1_CEN;
+    /* TI1 still on its pin (OR 0): nothing to capture. */
+    TT_CHECK(capture_interval() == UINT32_MAX);
+    /* On HSE_RTC with RTCPRE 0: no clock (RM0090 7.3.3: 0 and 1 give none). */
+    TIM11_OR = 2u;
+    TT_CHECK(capture_interval() == UINT32_MAX);
+    /* HSE / 31 every 8 edges: 248 periods of 8 MHz, 496 ticks of 16 MHz (a tick either way:
+     * the edges do not fall on the counter's). */
+    TSE_RCC->CFGR |= CFGR_RTCPRE(31);
+    uint32_t n = capture_interval();
+    TT_CHECKF(n >= 495 && n <= 497, "8 x HSE/31: %lu ticks\n", (unsigned long)n);
+    /* Every edge of HSE / 8: 16 ticks. */
+    TSE_RCC->CFGR = (TSE_RCC->CFGR & ~CFGR_RTCPRE(31)) | CFGR_RTCPRE(8);
+    TIM11->CCMR1 = 0x1u;
+    n = capture_interval();
+    TT_CHECKF(n >= 15 && n <= 17, "HSE/8: %lu ticks\n", (unsigned long)n);
+    /* A capture not read before the next: CC1OF as well. */
+    TIM11->SR = 0;
+    (void)TIM11->CCR1;
+    spin_us(10);
+    TT_CHECK((TIM11->SR & (TIM_SR_CC1IF | SR_CC1OF)) == (TIM_SR_CC1IF | SR_CC1OF));
+    /* In input mode CCR1 is read-only. */
+    const uint32_t held = TIM11->CCR1;
+    TIM11->CCER = 0;
+    TIM11->CCR1 = held ^ 0x5555u;
+    TT_CHECK(TIM11->CCR1 == held);
+    /* The crystal off: no HSE_RTC. */
+    TIM11->CCER = 1u;
+    TSE_RCC->CR &= ~RCC_CR_HSEON;
+    TT_CHECK(capture_interval() == UINT32_MAX);
+    TIM11->CR1 = 0;
+    TIM11->CCER = 0;
+    TIM11_OR = 0;
+    TSE_RCC->CFGR &= ~CFGR_RTCPRE(31);
+    TSE_RCC->APB2ENR &= ~APB2ENR_TIM11;
+}
+
 /* ---- the PLL, last: it changes the clocks the cases above count with ---- */
 
 static void rcc_pll(void)
@@ -561,6 +631,7 @@ int main(void)
     tt_case("can_request_order", can_request_order);
     tt_case("can_overrun", can_overrun);
     tt_case("can_sleep", can_sleep);
+    tt_case("tim11_hse_rtc_capture", tim11_hse_rtc_capture);
     tt_case("rcc_pll", rcc_pll);
     tt_finish();
 }

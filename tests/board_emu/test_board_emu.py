@@ -199,6 +199,51 @@ class BoardEmu(unittest.TestCase):
         lines = self.wait_virtual(em, 1.0, lambda e: self.boot_lines(e), "boot line")
         self.assertEqual(lines, [f"tse-fw node {NODE}: boot faults 0x01; clock: no HSERDY"])
 
+    def test_wrong_crystal(self):
+        """A crystal other than the one the image is built for (8 MHz): 12 MHz, the Olimex
+        STM32-E407's, and 8.2 MHz, 2.5 % off.  Measured against the internal oscillator at
+        start-up (TIM11 on HSE_RTC), each leaves the board on that oscillator in a `hardware`
+        fault, its boot line naming the frequency measured and the one expected; CAN, timed from
+        16 MHz, still talks.  Prints the frequencies measured."""
+        for hse_hz in (12000000, 8200000):
+            em = Emulator(ELF, tempfile.mkdtemp(prefix=f"hse{hse_hz}-", dir=self.dir), hse_hz=hse_hz)
+            self.emus.append(em)
+            em.start()
+            c = self.controller(em)
+            st = c.status()
+            self.assertEqual((st.state, st.fault), ("fault", "hardware"), st)
+            lines = self.wait_virtual(em, 1.0, lambda e: self.boot_lines(e), "boot line")
+            self.assertEqual(len(lines), 1, lines)
+            m = re.fullmatch(rf"tse-fw node {NODE}: boot faults 0x01; crystal (\d+\.\d{{3}}) MHz, "
+                             r"expected 8\.000 MHz: on the internal oscillator", lines[0])
+            self.assertIsNotNone(m, lines[0])
+            mhz = float(m.group(1))
+            print(f"figure: a {hse_hz / 1e6:g} MHz crystal where 8 MHz is expected: measured {mhz:.3f} MHz")
+            # A tick of the 16 MHz count in 32 x 248 crystal periods: 94 ppm at 12 MHz; 1 kHz shown.
+            self.assertAlmostEqual(mhz, hse_hz / 1e6, delta=hse_hz / 1e6 * 2e-4 + 0.001)
+            c.close()
+            em.stop()
+
+    def test_crystal_measured(self):
+        """The crystal the image expects (8 MHz): measured at start-up within a tick of the
+        HSI-based count and judged good, the board boots with no fault; prints what it measured
+        (tse_board.clocks.crystal, through the gdbstub)."""
+        if not (shutil.which("gdb-multiarch") or shutil.which("arm-none-eabi-gdb")):
+            self.skipTest("gdb-multiarch not installed (scripts/setup.sh)")
+        port = 20000 + (os.getpid() + 13) % 20000
+        em = self.start(extra=("-gdb", f"tcp:127.0.0.1:{port}"))
+        c = self.controller(em)
+        self.assertEqual((c.status().state, c.status().fault), ("disabled", "none"))
+        out = self.gdb_run(port, "print tse_board.clocks.crystal.verdict", "print tse_board.clocks.crystal.measured_hz",
+                           "print tse_board.clocks.crystal.ticks", "print tse_board.clocks.sysclk_hz")
+        values = [line.split("=", 1)[1].strip() for line in out.splitlines() if line.startswith("$")]
+        self.assertEqual(values[0], "HSE_CHECK_OK", out)
+        hz, ticks, sysclk = int(values[1]), int(values[2]), int(values[3])
+        print(f"figure: the 8 MHz crystal measured at start-up: {hz} Hz ({ticks} ticks of 16 MHz over "
+              f"32 x 248 crystal periods)")
+        self.assertAlmostEqual(hz, 8000000, delta=8000000 / ticks + 1)
+        self.assertEqual(sysclk, 168000000)
+
     def test_enable_home(self):
         """ENABLE and HOME: every slide goes down to its switch and then to the home pose; what
         the rig counted is what the controller commanded, and no step broke the drivers'

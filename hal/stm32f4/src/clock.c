@@ -43,7 +43,7 @@ static board_clocks reset_clocks(const char *failed)
     /* Back to the internal oscillator with no prescalers, whatever was half done. */
     TSE_RCC->CFGR &= ~RCC_CFGR_SW_MASK;
     TSE_RCC->CR &= ~RCC_CR_PLLON;
-    const board_clocks c = {HSI_HZ, HSI_HZ, HSI_HZ, HSI_HZ, failed};
+    const board_clocks c = {HSI_HZ, HSI_HZ, HSI_HZ, HSI_HZ, failed, {HSE_CHECK_NOT_RUN, 0, HSE_HZ, 0}};
     TSE_RCC->CFGR &= ~((0x7u << 10) | (0x7u << 13));
     return c;
 }
@@ -56,6 +56,13 @@ board_clocks board_clock_init(void)
     TSE_RCC->CR |= RCC_CR_HSEON;
     if (wait_set(&TSE_RCC->CR, RCC_CR_HSERDY, RCC_CR_HSERDY) != 0)
         return reset_clocks("HSERDY");
+    /* The crystal the PLL is set for, measured against the HSI while it is still the clock. */
+    const hse_check crystal = board_hse_check(HSE_HZ);
+    if (crystal.verdict != HSE_CHECK_OK) {
+        board_clocks off = reset_clocks("crystal");
+        off.crystal = crystal;
+        return off;
+    }
 
     TSE_RCC->CR &= ~RCC_CR_PLLON;
     TSE_RCC->PLLCFGR = RCC_PLLCFGR(PLL_M, PLL_N, PLL_P, PLL_Q) | RCC_PLLCFGR_SRC_HSE;
@@ -76,6 +83,6 @@ board_clocks board_clock_init(void)
         return reset_clocks("SWS");
 
     const uint32_t sysclk = HSE_HZ / PLL_M * PLL_N / PLL_P;
-    const board_clocks c = {sysclk, sysclk / 4u, sysclk / 2u, sysclk / 2u, 0};
+    const board_clocks c = {sysclk, sysclk / 4u, sysclk / 2u, sysclk / 2u, 0, crystal};
     return c;
 }

@@ -13,6 +13,7 @@ typedef enum {
     BOARD_FAULT_UNEXPECTED_IRQ,  /* an enabled interrupt without a handler: irq below */
     BOARD_FAULT_WATCHDOG_RESET,  /* the IWDG reset the core: the main loop stopped */
     BOARD_FAULT_TIMEOUT,         /* a hardware flag never came: `where` names it */
+    BOARD_FAULT_CRYSTAL,         /* the crystal measured off its frequency (hse_check.h) */
 } board_fault_kind;
 
 typedef struct {
