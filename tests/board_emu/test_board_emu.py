@@ -94,9 +94,15 @@ class BoardEmu(unittest.TestCase):
                 self.fail(f"{seconds} s of virtual time took more than {real_cap:.0f} s of real time")
             time.sleep(0.02)
 
-    def controller(self, em, timeout=60.0, heartbeat=True):
+    def controller(self, em, timeout=None, heartbeat=True):
         """tse.can's client on the emulator's bus, once the controller has spoken (frames sent
-        before it joins the bus are lost, as on a real bus)."""
+        before it joins the bus are lost, as on a real bus).  Its answers are awaited at
+        REAL_PER_VIRTUAL for the longest a command may take in virtual time: a PARAM_SAVE that
+        erases a 128 KiB sector takes up to 2 s of it (the typical erase times the flash model
+        keeps, emu/hw/stm32f4_flash.c), which a loaded machine
+        stretched beyond a fixed 60 s wait."""
+        if timeout is None:
+            timeout = 10.0 + REAL_PER_VIRTUAL * 2.0
         bus = em.bus()
         self.addCleanup(bus.shutdown)
         c = tc.Controller(bus=bus, node=NODE, timeout=timeout, heartbeat=heartbeat)
