@@ -99,8 +99,8 @@ class BoardEmu(unittest.TestCase):
         before it joins the bus are lost, as on a real bus).  Its answers are awaited at
         REAL_PER_VIRTUAL for the longest a command may take in virtual time: a PARAM_SAVE that
         erases a 128 KiB sector takes up to 2 s of it (the typical erase times the flash model
-        keeps, emu/hw/stm32f4_flash.c), which a loaded machine
-        stretched beyond a fixed 60 s wait."""
+        keeps, emu/hw/stm32f4_flash.c), which a loaded machine stretched beyond a fixed 60 s
+        wait."""
         if timeout is None:
             timeout = 10.0 + REAL_PER_VIRTUAL * 2.0
         bus = em.bus()
