@@ -128,3 +128,12 @@ def test_path_is_planned_at_the_controllers_rates(rig):
     p, done = ctl.path(wp)
     assert p.v_limit == pytest.approx(0.06890625, abs=1e-12)
     assert done.rows == len(p.rows)
+
+
+def test_the_controllers_raw_set_is_what_plan_takes(rig):
+    """ctl.params.raw(), which plan's docstring names, reads every parameter's wire integer in
+    id order: the fake controller answers the table's defaults, which are default_params()."""
+    ctl, _fake = rig
+    raw = ctl.params.raw()
+    assert raw == plan.default_params()
+    assert raw[[p[0] for p in P.PARAMS].index("slide_vmax")] == 150000  # um/s: 0.15 m/s

@@ -893,7 +893,7 @@ class Controller:
         n = len(wp)
         tt = None if t is None else np.array(np.broadcast_to(np.asarray(t, dtype=float), (n,)))
         vv = None if v is None else np.array(np.broadcast_to(np.asarray(v, dtype=float), (n,)))
-        params = [self._param_exchange("PARAM_GET", param=pid) for pid in range(len(_P.PARAMS))]
+        params = self.params.raw()
         rates = self._rates()
         with contextlib.closing(self.watch(timeout=1.0)) as w:
             tel = next((x for x in w if x.pose is not None), None)
@@ -920,7 +920,7 @@ class Controller:
     def _check_path(self, plan, rows):
         """tsectl's check of the whole path before sending (tse_py_traj_check, the controller's
         validator), from the controller's parameters, rates, pose and slides; Rejected names the row."""
-        params = [self._param_exchange("PARAM_GET", param=pid) for pid in range(len(_P.PARAMS))]
+        params = self.params.raw()
         rates = self._rates()
         with contextlib.closing(self.watch(timeout=1.0)) as w:
             tel = next((t for t in w if t.pose is not None), None)
@@ -1113,6 +1113,7 @@ class _Params:
         ctl.params["slide_vmax"]            -> 0.15
         ctl.params["slide_vmax"] = 0.14     (only while disabled or in fault)
         ctl.params.dump()                   -> {name: value} of every parameter
+        ctl.params.raw()                    -> [wire integer of every parameter, by id]
         ctl.params.save()                   (non-volatile store)
     A name the table does not know, or a value outside its range, is a ValueError naming the
     parameter and the range (nothing is sent); a set the controller refuses raises Rejected."""
@@ -1157,6 +1158,11 @@ class _Params:
 
     def dump(self):
         return {p[0]: self.get(p[0]) for p in _P.PARAMS}
+
+    def raw(self):
+        """Every parameter as it travels (its wire integer), in parameter-id order: the set
+        tse.plan.plan and the path checks take."""
+        return [self._ctl._param_exchange("PARAM_GET", param=pid) for pid in range(len(_P.PARAMS))]
 
     def __getitem__(self, name):
         return self.get(name)

@@ -14,7 +14,7 @@ the same check of the rows by the controller's validator before they are returne
     p.duration, p.near_share
 
 Parameters are the controller's raw set (its wire integers in parameter-id order, as PARAM_GET
-reads them, tse.can.Controller.params_raw()); None plans with the controller's defaults.  Rates are
+reads them, tse.can.Controller.params.raw()); None plans with the controller's defaults.  Rates are
 the controller's (step_hz, segment_hz) as tse.can.Controller.info() reports them; None plans for a
 controller at the built-in ones.
 """
