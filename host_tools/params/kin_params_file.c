@@ -142,6 +142,15 @@ static void base_set(const kin_param_values *p, fw_param_set *s)
     }
 }
 
+/* A reading over *p at the built-in rates: tse-kin and tse.kin judge a file as a controller of the
+ * built-in rates takes it. */
+static void reading_start(const kin_param_values *p, param_reading *r)
+{
+    fw_param_set base;
+    base_set(p, &base);
+    param_reading_start(r, &base);
+}
+
 /* The reading's kinematic values, where the file set them, over *p. */
 static kin_params_outcome adopt(const param_reading *r, const char *name, kin_param_values *p, char *err,
                                 size_t errlen)
@@ -175,7 +184,7 @@ kin_params_outcome kin_params_parse(const char *text, const char *name, kin_para
         return KIN_PARAMS_UNREADABLE;
     }
     param_reading r;
-    base_set(p, &r.set);
+    reading_start(p, &r);
     const int rc = judge == KIN_PARAMS_DESIGN ? param_text_scan(copy, name, &r, err, errlen)
                                               : param_text_read(copy, name, &r, err, errlen);
     free(copy);
@@ -186,7 +195,7 @@ kin_params_outcome kin_params_load(const char *path, kin_params_judge judge, kin
                                    size_t errlen)
 {
     param_reading r;
-    base_set(p, &r.set);
+    reading_start(p, &r);
     const int rc = judge == KIN_PARAMS_DESIGN ? param_file_scan(path, &r, err, errlen)
                                               : param_file_read_full(path, &r, err, errlen);
     if (rc != 0)

@@ -84,10 +84,10 @@ static void explain_switch(const fw_param_set *s, int id, fw_param_rule rule, ch
 
 /* The STEP pulse and the DIR set-up against the controller's step interrupts (limits.h), with the
  * longest value that would fit. */
-static void explain_timing(const fw_param_set *s, fw_param_rule rule, char *err, size_t errlen)
+static void explain_timing(const fw_param_set *s, fw_param_rule rule, fw_rates rates, char *err, size_t errlen)
 {
-    const uint64_t hz = FW_STEP_HZ, period_ns = 1000000000u / FW_STEP_HZ;
-    const uint32_t interval = fw_step_interval_ticks(s->v[FP_STEP_RATE_MAX], FW_STEP_HZ);
+    const uint64_t hz = rates.step_hz, period_ns = 1000000000u / hz;
+    const uint32_t interval = fw_step_interval_ticks(s->v[FP_STEP_RATE_MAX], rates.step_hz);
     const uint64_t gap_ns = (uint64_t)interval * 1000000000u / hz;
     const int64_t pulse = s->v[FP_STEP_PULSE_NS];
     const words rate = said(s, FP_STEP_RATE_MAX);
@@ -109,8 +109,8 @@ static void explain_timing(const fw_param_set *s, fw_param_rule rule, char *err,
                  (unsigned long long)((uint64_t)interval * 1000000000u / (2u * hz)));
         return;
     case FW_RULE_DIR_SETUP_ROOM: {
-        const uint32_t per_segment = FW_STEP_HZ / FW_SEGMENT_HZ;
-        const uint32_t setup = fw_dir_setup_ticks((uint32_t)s->v[FP_DIR_SETUP_NS], FW_STEP_HZ);
+        const uint32_t per_segment = rates.step_hz / rates.segment_hz;
+        const uint32_t setup = fw_dir_setup_ticks((uint32_t)s->v[FP_DIR_SETUP_NS], rates.step_hz);
         char most[96] = "";
         if (per_segment > interval + 1u)
             snprintf(most, sizeof most, " (at most %llu ns)",
@@ -123,15 +123,15 @@ static void explain_timing(const fw_param_set *s, fw_param_rule rule, char *err,
     }
     default:
         snprintf(err, errlen, "the controller's rates (%u Hz step interrupts, %u Hz control segments) cannot run it",
-                 FW_STEP_HZ, FW_SEGMENT_HZ);
+                 rates.step_hz, rates.segment_hz);
         return;
     }
 }
 
-void param_explain_fault(const fw_param_set *s, fw_param_fault f, char *err, size_t errlen)
+void param_explain_fault(const fw_param_set *s, fw_param_fault f, fw_rates rates, char *err, size_t errlen)
 {
     /* The parameter the judge blames, when it finds the same rule broken. */
-    const fw_param_fault own = fw_params_judge_config(s, FW_STEP_HZ, FW_SEGMENT_HZ);
+    const fw_param_fault own = fw_params_judge_config(s, rates.step_hz, rates.segment_hz);
     const int id = own.rule == f.rule && own.id >= 0 ? own.id : f.id;
     const int known = id >= 0 && id < FP_COUNT;
     switch (f.rule) {
@@ -164,7 +164,7 @@ void param_explain_fault(const fw_param_set *s, fw_param_fault f, char *err, siz
     case FW_RULE_PULSE_LOW:
     case FW_RULE_DIR_SETUP_ROOM:
     case FW_RULE_CONFIG:
-        explain_timing(s, f.rule, err, errlen);
+        explain_timing(s, f.rule, rates, err, errlen);
         return;
     case FW_RULE_NOT_AT_REST:
         snprintf(err, errlen, "the slides were still moving when the set came: set it again at rest");
@@ -180,11 +180,11 @@ void param_explain_fault(const fw_param_set *s, fw_param_fault f, char *err, siz
         snprintf(err, errlen, "the set breaks rule %d, which this tool does not know", (int)f.rule);
 }
 
-void param_explain_invalid(const fw_param_set *s, char *err, size_t errlen)
+void param_explain_invalid(const fw_param_set *s, fw_rates rates, char *err, size_t errlen)
 {
-    const fw_param_fault f = fw_params_judge_config(s, FW_STEP_HZ, FW_SEGMENT_HZ);
+    const fw_param_fault f = fw_params_judge_config(s, rates.step_hz, rates.segment_hz);
     if (f.rule == FW_RULE_NONE)
         snprintf(err, errlen, "the set is valid");
     else
-        param_explain_fault(s, f, err, errlen);
+        param_explain_fault(s, f, rates, err, errlen);
 }

@@ -107,11 +107,11 @@ static int take_line(reading *r, char *line, int lineno)
 /* The whole set, judged as the controller judges it (at its rates). */
 static int take_set(reading *r, const fw_param_set *before)
 {
-    const fw_param_fault f = fw_params_judge_config(&r->next.set, FW_STEP_HZ, FW_SEGMENT_HZ);
+    const fw_param_fault f = fw_params_judge_config(&r->next.set, r->next.rates.step_hz, r->next.rates.segment_hz);
     if (f.rule == FW_RULE_NONE)
         return 0;
     char why[400];
-    param_explain_fault(&r->next.set, f, why, sizeof why);
+    param_explain_fault(&r->next.set, f, r->next.rates, why, sizeof why);
     const int bad = f.id;
     if (bad < 0)
         snprintf(r->err, r->errlen, "%s: %s", r->path, why);
@@ -128,6 +128,7 @@ void param_reading_start(param_reading *r, const fw_param_set *base)
 {
     memset(r, 0, sizeof *r);
     r->set = *base;
+    r->rates = FW_RATES_BUILT_IN;
     for (int id = 0; id < FP_COUNT; ++id) {
         param_key k;
         param_si_key(id, &k);
@@ -142,6 +143,7 @@ static int read_text(char *text, const char *name, int judged, param_reading *ou
     r.path = name;
     r.judged = judged;
     param_reading_start(&r.next, &out->set);
+    r.next.rates = out->rates;
     r.err = err;
     r.errlen = errlen;
     char *cur = text;
@@ -194,10 +196,11 @@ int param_file_scan(const char *path, param_reading *r, char *err, size_t errlen
     return read_file(path, 0, r, err, errlen);
 }
 
-int param_file_read(const char *path, fw_param_set *s, char *err, size_t errlen)
+int param_file_read(const char *path, fw_param_set *s, fw_rates rates, char *err, size_t errlen)
 {
     param_reading r;
     param_reading_start(&r, s);
+    r.rates = rates;
     if (param_file_read_full(path, &r, err, errlen) != 0)
         return -1;
     *s = r.set;

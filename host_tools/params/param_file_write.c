@@ -74,12 +74,12 @@ void param_file_line(FILE *f, const fw_param_set *s, int id)
     fprintf(f, "%s\n", line);
 }
 
-void param_file_dump(FILE *f, const fw_param_set *s, const char *title)
+void param_file_dump(FILE *f, const fw_param_set *s, fw_rates rates, const char *title)
 {
     if (title)
         comment(f, title);
     char speed[512];
-    comment(f, param_speed_limit_words(s, speed, sizeof speed));
+    comment(f, param_speed_limit_words(s, rates, speed, sizeof speed));
     for (int id = 0; id < FP_COUNT; ++id)
         param_file_line(f, s, id);
 }
@@ -101,13 +101,14 @@ static void sync_dir(const char *path)
 
 /* What goes to PATH: the template for a new file, the user's file merged; NULL with err when
  * neither can be made. */
-static char *new_text(const char *path, const fw_param_set *s, const struct stat *old, char *err, size_t errlen)
+static char *new_text(const char *path, const fw_param_set *s, fw_rates rates, const struct stat *old, char *err,
+                      size_t errlen)
 {
     if (old) {
         fw_param_set check;
         fw_params_default(&check);
         char why[400];
-        if (param_file_read(path, &check, why, sizeof why) != 0) {
+        if (param_file_read(path, &check, rates, why, sizeof why) != 0) {
             snprintf(err, errlen, "not written over %s, which does not read as a parameter file now: %s", path, why);
             return NULL;
         }
@@ -136,17 +137,17 @@ static char *new_text(const char *path, const fw_param_set *s, const struct stat
     return buf;
 }
 
-int param_file_write(const char *path, const fw_param_set *s, char *err, size_t errlen)
+int param_file_write(const char *path, const fw_param_set *s, fw_rates rates, char *err, size_t errlen)
 {
-    if (fw_params_judge_config(s, FW_STEP_HZ, FW_SEGMENT_HZ).rule != FW_RULE_NONE) {
+    if (fw_params_judge_config(s, rates.step_hz, rates.segment_hz).rule != FW_RULE_NONE) {
         char why[400];
-        param_explain_invalid(s, why, sizeof why);
+        param_explain_invalid(s, rates, why, sizeof why);
         snprintf(err, errlen, "%s: not written: %s", path, why);
         return -1;
     }
     struct stat st;
     const int merge = stat(path, &st) == 0 && S_ISREG(st.st_mode);
-    char *text = new_text(path, s, merge ? &st : NULL, err, errlen);
+    char *text = new_text(path, s, rates, merge ? &st : NULL, err, errlen);
     if (!text)
         return -1;
     const size_t n = strlen(path) + sizeof ".tmp";

@@ -9,10 +9,10 @@ int param_sets_speed_limit(int id)
     return id == FP_SLIDE_VMAX || id == FP_STEPS_PER_M || id == FP_STEP_RATE_MAX || id == FP_DIR_SETUP_NS;
 }
 
-const char *param_speed_limit_words(const fw_param_set *s, char *buf, size_t cap)
+const char *param_speed_limit_words(const fw_param_set *s, fw_rates rates, char *buf, size_t cap)
 {
     fw_speed_limit v;
-    if (fw_speed_limit_from_params(s, FW_STEP_HZ, FW_SEGMENT_HZ, &v) != 0) {
+    if (fw_speed_limit_from_params(s, rates.step_hz, rates.segment_hz, &v) != 0) {
         snprintf(buf, cap, "slide speed limit in effect: none (the step generator cannot run this set)");
         return buf;
     }
@@ -36,8 +36,8 @@ const char *param_speed_limit_words(const fw_param_set *s, char *buf, size_t cap
              "segment / steps_per_m = %s, %u being the steps that fit in a segment that changes direction (%u step "
              "interrupts at %u kHz, less %u for the DIR set-up of dir_setup_ns = %s, one step every %u for "
              "step_rate_max = %s); slide_vmax = %s is higher",
-             (double)v.vmax, (double)FW_STEP_RATE_MARGIN, v.segment_steps, 1000.0 / FW_SEGMENT_HZ, spm,
-             v.segment_steps, v.sc.ticks_per_segment, FW_STEP_HZ / 1000u, v.sc.dir_setup_ticks, dir,
+             (double)v.vmax, (double)FW_STEP_RATE_MARGIN, v.segment_steps, 1000.0 / rates.segment_hz, spm,
+             v.segment_steps, v.sc.ticks_per_segment, rates.step_hz / 1000u, v.sc.dir_setup_ticks, dir,
              v.sc.min_step_interval, rate, vmax);
     return buf;
 }

@@ -53,23 +53,24 @@ int param_number_from_text(const param_key *k, const char *text, char *err, size
  * that param_from_text turns back into raw.  Returns buf. */
 const char *param_to_text(const param_key *k, int32_t raw, char *buf, size_t cap);
 
-/* Explains why the controller refuses set s (fw_params_judge_config at its rates, FW_STEP_HZ and
- * FW_SEGMENT_HZ), in words with the rule and the values in SI, e.g. "alpha_min = 1.3 rad must be
+/* Explains why a controller running at `rates` (its INFO's; FW_RATES_BUILT_IN for the built-in
+ * ones) refuses set s (fw_params_judge_config), in words with the rule and the values in SI, e.g. "alpha_min = 1.3 rad must be
  * below alpha_max = 1.2 rad" or "home_sw_3 = 0.05 m: the six homing switches cannot be reached
  * together (...)".  For a set it accepts, says so. */
-void param_explain_invalid(const fw_param_set *s, char *err, size_t errlen);
+void param_explain_invalid(const fw_param_set *s, fw_rates rates, char *err, size_t errlen);
 
-/* The same for a refusal already known: rule f.rule, about parameter f.id (-1: none), in set s.
+/* The same for a refusal already known: rule f.rule, about parameter f.id (-1: none), in set s, by a
+ * controller at `rates`.
  * A refusal's rule comes from the controller (REJECT's where), its parameter from the command:
  * where s breaks the same rule by fw_params_judge_config the parameter that judge blames is named
  * (a switch pair's first switch), otherwise f.id.  Never says the set is valid (rule
  * FW_RULE_NONE says the refusal gave no rule). */
-void param_explain_fault(const fw_param_set *s, fw_param_fault f, char *err, size_t errlen);
+void param_explain_fault(const fw_param_set *s, fw_param_fault f, fw_rates rates, char *err, size_t errlen);
 
 /* The slide speed limit in effect for set s at the controller's rates (fw_speed_limit_from_params)
  * and what sets it, e.g. "slide speed limit in effect: 0.1392 m/s, set by the step generator: ...
  * (slide_vmax = 0.15 m/s is higher)"; for a set the step generator refuses, says so. */
-const char *param_speed_limit_words(const fw_param_set *s, char *buf, size_t cap);
+const char *param_speed_limit_words(const fw_param_set *s, fw_rates rates, char *buf, size_t cap);
 
 /* Whether parameter id takes part in the slide speed limit (slide_vmax, steps_per_m,
  * step_rate_max, dir_setup_ns). */
@@ -81,8 +82,9 @@ int param_sets_speed_limit(int id);
  * under its other spelling), an unknown key, a bad value, or a whole set that fw_params_check
  * refuses is an error "PATH:LINE: ..." (for the set, the line of the key fw_params_check blames;
  * when the file does not set that key, the message says its kept value is what is in conflict).
- * An unreadable file is "PATH: ...".  Returns 0, or -1 with *s unchanged. */
-int param_file_read(const char *path, fw_param_set *s, char *err, size_t errlen);
+ * An unreadable file is "PATH: ...".  The set is judged at `rates`, the rates of the controller
+ * that is to run it.  Returns 0, or -1 with *s unchanged. */
+int param_file_read(const char *path, fw_param_set *s, fw_rates rates, char *err, size_t errlen);
 
 /* What a parameter file said, beside the set it gives: the one reader's whole answer, for the
  * tools that compute with the values as written (tse-kin, tse.kin.Params) rather than with the
@@ -94,13 +96,16 @@ typedef struct {
                            * a parameter the file does not set: its integer in SI */
     int line[FP_COUNT];   /* the line that set it; 0: not in the file */
     int degrees[FP_COUNT];/* set through its _deg spelling */
+    fw_rates rates;       /* the rates the whole set is judged at (the controller's that is to run
+                           * it); param_reading_start: the built-in ones */
 } param_reading;
 
-/* A reading of no file over set base: no lines, base's values. */
+/* A reading of no file over set base: no lines, base's values, the built-in rates. */
 void param_reading_start(param_reading *r, const fw_param_set *base);
 
 /* param_file_read's rules over `text` (modified in place; NUL-terminated), `name` naming it in
- * messages, over r->set; on success *r is the whole reading, else -1 with *r unchanged. */
+ * messages, over r->set, the set judged at r->rates (r from param_reading_start); on success *r is
+ * the whole reading, else -1 with *r unchanged. */
 int param_text_read(char *text, const char *name, param_reading *r, char *err, size_t errlen);
 
 /* The same for the file at path (param_file_read's limits); -2 (not -1) for a file that cannot be
@@ -125,16 +130,17 @@ int param_file_scan(const char *path, param_reading *r, char *err, size_t errlen
  *   value in s is not the default are appended under a comment, one 'name = value  # unit' line
  *   each.  Reading the result gives s.  A file param_file_read refuses is not written over (its
  *   message says why).
- * A set that the controller refuses (param_explain_invalid) is not written (param_file_read would
- * refuse the file).  Returns 0, or -1 with err (PATH untouched). */
-int param_file_write(const char *path, const fw_param_set *s, char *err, size_t errlen);
+ * A set that a controller at `rates` refuses (param_explain_invalid) is not written (param_file_read
+ * at those rates would refuse the file).  Returns 0, or -1 with err (PATH untouched). */
+int param_file_write(const char *path, const fw_param_set *s, fw_rates rates, char *err, size_t errlen);
 
 /* One line of a parameter file for parameter id of s: "name = value   # unit" (a ratio's
  * comment says "ratio"), in SI: what tse-sim's and tse-kin's readers take back. */
 void param_file_line(FILE *f, const fw_param_set *s, int id);
 
 /* The whole set as a parameter file, one param_file_line each, after `title` (a comment, may be
- * NULL) and a comment with the slide speed limit in effect: what `tsectl params dump` prints. */
-void param_file_dump(FILE *f, const fw_param_set *s, const char *title);
+ * NULL) and a comment with the slide speed limit in effect at `rates`: what `tsectl params dump`
+ * prints. */
+void param_file_dump(FILE *f, const fw_param_set *s, fw_rates rates, const char *title);
 
 #endif

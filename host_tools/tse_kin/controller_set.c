@@ -11,7 +11,7 @@ int kin_controller_set(const kin_run *run, fw_param_set *s)
     if (!run->opt->params_path)
         return KIN_EXIT_OK;
     char err[512];
-    if (param_file_read(run->opt->params_path, s, err, sizeof err) != 0) {
+    if (param_file_read(run->opt->params_path, s, FW_RATES_BUILT_IN, err, sizeof err) != 0) {
         fprintf(stderr, "tse-kin: %s\n", err);
         return KIN_EXIT_FILE;
     }

@@ -246,7 +246,7 @@ static int write_template(const char *path)
     fw_param_set d;
     fw_params_default(&d);
     char err[768];
-    if (param_file_write(path, &d, err, sizeof err) != 0) {
+    if (param_file_write(path, &d, rates, err, sizeof err) != 0) {
         fprintf(stderr, "tse-sim: %s\n", err);
         return 2;
     }
@@ -327,7 +327,7 @@ int main(int argc, char **argv)
     static sim s;
     static sim_param_store store;
     char err[768];
-    if (sim_param_store_open(&store, params, stderr, err, sizeof err) != 0) {
+    if (sim_param_store_open(&store, params, rates, stderr, err, sizeof err) != 0) {
         fprintf(stderr, "tse-sim: %s\n", err);
         return 2;
     }

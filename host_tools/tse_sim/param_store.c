@@ -8,16 +8,17 @@
 
 #include "param_text.h"
 
-int sim_param_store_open(sim_param_store *st, const char *path, FILE *log, char *err, size_t errlen)
+int sim_param_store_open(sim_param_store *st, const char *path, fw_rates rates, FILE *log, char *err, size_t errlen)
 {
     memset(st, 0, sizeof *st);
     st->path = path;
+    st->rates = rates;
     st->log = log;
     fw_params_default(&st->set);
     struct stat sb;
     if (!path || (stat(path, &sb) != 0 && errno == ENOENT))
         return 0;
-    if (param_file_read(path, &st->set, err, errlen) != 0)
+    if (param_file_read(path, &st->set, rates, err, errlen) != 0)
         return -1;
     st->stored = true;
     return 0;
@@ -40,7 +41,7 @@ static int save(void *ctx, const void *buf, size_t len)
         snprintf(st->err, sizeof st->err, "no parameter file (tse-sim --params FILE)");
     else if (fw_params_deserialize(&s, buf, len) != 0)
         snprintf(st->err, sizeof st->err, "%s: not written: the controller's record is not a valid set", st->path);
-    else if (param_file_write(st->path, &s, st->err, sizeof st->err) == 0) {
+    else if (param_file_write(st->path, &s, st->rates, st->err, sizeof st->err) == 0) {
         st->set = s;
         st->stored = true;
         st->err[0] = '\0';

@@ -34,17 +34,11 @@ static void list(void)
     char speed[512];
     printf("\nA slide's speed is held to the lower of slide_vmax and the step generator's limit; with the\n"
            "defaults ('tsectl params get slide_vmax' shows a controller's):\n%s\n",
-           param_speed_limit_words(&d, speed, sizeof speed));
-}
-
-static bool built_in(fw_rates r)
-{
-    return r.step_hz == FW_STEP_HZ && r.segment_hz == FW_SEGMENT_HZ;
+           param_speed_limit_words(&d, FW_RATES_BUILT_IN, speed, sizeof speed));
 }
 
 /* After a value of the speed limit's parameters, the limit it gives with the controller's others
- * at its rates, as a comment line (the output stays a parameter file).  param_speed_limit_words
- * works at the built-in rates: a controller at others gets the figure alone. */
+ * at its rates, as a comment line (the output stays a parameter file). */
 static void speed_note(tlink *l, int id, int32_t raw)
 {
     fw_param_set s;
@@ -53,17 +47,7 @@ static void speed_note(tlink *l, int id, int32_t raw)
         return;
     s.v[id] = raw;
     char speed[512];
-    fw_speed_limit v;
-    if (built_in(r))
-        printf("# %s\n", param_speed_limit_words(&s, speed, sizeof speed));
-    else if (fw_speed_limit_from_params(&s, r.step_hz, r.segment_hz, &v) != 0)
-        printf("# slide speed limit in effect: none (node %u's step generator cannot run this set at its %u Hz "
-               "step interrupts and %u Hz control segments)\n",
-               l->node, r.step_hz, r.segment_hz);
-    else
-        printf("# slide speed limit in effect: %.4g m/s, %s, at node %u's %u Hz step interrupts and %u Hz control "
-               "segments\n",
-               (double)v.vmax, proto_slide_limits[v.by].name, l->node, r.step_hz, r.segment_hz);
+    printf("# %s\n", param_speed_limit_words(&s, r, speed, sizeof speed));
 }
 
 /* Checks NAME and VALUE of a set before anything is sent. */
@@ -84,14 +68,14 @@ static int dump_file(const char *path)
     fw_param_set s;
     fw_params_default(&s);
     char err[512];
-    if (param_file_read(path, &s, err, sizeof err) != 0) {
+    if (param_file_read(path, &s, FW_RATES_BUILT_IN, err, sizeof err) != 0) {
         fprintf(stderr, "tsectl: %s\n", err);
         return EXIT_USAGE;
     }
     char title[320];
     snprintf(title, sizeof title, "parameters of %.200s as a controller takes them (SI units, each unit in a comment)",
              path);
-    param_file_dump(stdout, &s, title);
+    param_file_dump(stdout, &s, FW_RATES_BUILT_IN, title);
     return EXIT_OK;
 }
 
@@ -131,8 +115,7 @@ int check_params(int argc, char **argv, int *done)
 
 /* A PARAM_SET refused for the whole set: the rule the controller named, with its values and the
  * controller's others.  From a controller that names no rule, tsectl's own judgement at its rates,
- * if any.  param_explain_fault words the step generator's timing at the built-in rates: for a
- * controller at others, those rules are named with its rates instead. */
+ * if any, all at the controller's rates (INFO's). */
 static void explain_set(tlink *l, int id, int32_t raw, const proto_message *rej)
 {
     fw_param_set s;
@@ -145,15 +128,8 @@ static void explain_set(tlink *l, int id, int32_t raw, const proto_message *rej)
         f = fw_params_judge_config(&s, r.step_hz, r.segment_hz);
     if (f.rule == FW_RULE_NONE)
         return;
-    const bool timing = f.rule == FW_RULE_PULSE_PERIOD || f.rule == FW_RULE_PULSE_LOW ||
-                        f.rule == FW_RULE_DIR_SETUP_ROOM || f.rule == FW_RULE_CONFIG;
-    if (timing && !built_in(r)) {
-        ctl_error("why: %s, against node %u's %u Hz step interrupts and %u Hz control segments",
-                  proto_param_rules[f.rule].words, l->node, r.step_hz, r.segment_hz);
-        return;
-    }
     char why[512];
-    param_explain_fault(&s, f, why, sizeof why);
+    param_explain_fault(&s, f, r, why, sizeof why);
     ctl_error("why: %s", why);
 }
 
@@ -177,7 +153,10 @@ int run_params(tlink *l, int argc, char **argv)
     }
     if (!strcmp(sub, "dump")) {
         fw_param_set s;
-        const int rc = ctl_params_read(l, &s);
+        fw_rates r;
+        int rc = ctl_params_read(l, &s);
+        if (rc == EXIT_OK)
+            rc = ctl_rates(l, &r);
         if (rc != EXIT_OK)
             return rc;
         char title[160];
@@ -185,7 +164,7 @@ int run_params(tlink *l, int argc, char **argv)
                  "parameters of node %u (SI units, each unit in a comment; tse-sim --params and tse-kin --params "
                  "read this file)",
                  l->node);
-        param_file_dump(stdout, &s, title);
+        param_file_dump(stdout, &s, r, title);
         return EXIT_OK;
     }
     param_key k;

@@ -260,7 +260,7 @@ static void test_to_text(void **state)
 static void explained(const fw_param_set *s, const char *want)
 {
     char err[512] = "";
-    param_explain_invalid(s, err, sizeof err);
+    param_explain_invalid(s, FW_RATES_BUILT_IN, err, sizeof err);
     assert_string_equal(err, want);
 }
 
@@ -297,13 +297,13 @@ static void test_explain(void **state)
              "home_sw_3 = 0.05 m and home_sw_4 = 0.2 m make scissor 2 0.229129 m wide, narrower than 2 l0 "
              "cos(alpha_max) = %.6g m: its alpha_max stop halts them before the switches)",
              2 * 0.2647 * 1.727 * cos(1.215271));
-    param_explain_invalid(&s, err, sizeof err);
+    param_explain_invalid(&s, FW_RATES_BUILT_IN, err, sizeof err);
     assert_string_equal(err, want);
     assert_true(fabs(2 * 0.2647 * 1.727 * cos(1.215271) - 0.318) < 0.001);
     /* The second of a pair is blamed through its pair's first, as the firmware does. */
     fw_params_default(&s);
     s.v[FP_HOME_SW_6] = 50000;
-    param_explain_invalid(&s, err, sizeof err);
+    param_explain_invalid(&s, FW_RATES_BUILT_IN, err, sizeof err);
     assert_contains(err, "home_sw_5 = 0.2 m: the six homing switches cannot be reached together");
     assert_contains(err, "scissor 3");
 }
@@ -346,30 +346,68 @@ static void test_explain_timing(void **state)
     fw_params_default(&s);
     const fw_param_fault rest = {FP_SLIDE_VMAX, FW_RULE_NOT_AT_REST};
     char err[512];
-    param_explain_fault(&s, rest, err, sizeof err);
+    param_explain_fault(&s, rest, FW_RATES_BUILT_IN, err, sizeof err);
     assert_string_equal(err, "the slides were still moving when the set came: set it again at rest");
     const fw_param_fault config = {-1, FW_RULE_CONFIG};
-    param_explain_fault(&s, config, err, sizeof err);
+    param_explain_fault(&s, config, FW_RATES_BUILT_IN, err, sizeof err);
     assert_string_equal(err, "the controller's rates (200000 Hz step interrupts, 1000 Hz control segments) cannot run it");
     /* From a controller that names no rule: its generic words. */
     const fw_param_fault none = {FP_L, FW_RULE_NONE};
-    param_explain_fault(&s, none, err, sizeof err);
+    param_explain_fault(&s, none, FW_RATES_BUILT_IN, err, sizeof err);
     assert_string_equal(err, "the value is in range but the whole set it gives is not valid (geometry, stroke, homing "
                              "switches or step timing)");
     /* A switch pair broken by setting its second switch: the judge's blame, the pair's first. */
     s.v[FP_HOME_SW_1] = 183500;
     s.v[FP_HOME_SW_2] = 183500;
     const fw_param_fault reach = {FP_HOME_SW_2, FW_RULE_SWITCH_REACH};
-    param_explain_fault(&s, reach, err, sizeof err);
+    param_explain_fault(&s, reach, FW_RATES_BUILT_IN, err, sizeof err);
     assert_contains(err, "home_sw_1 = 0.1835 m: the six homing switches cannot be reached together (slides 1 and 2");
     /* Every rule, on a set the local judge finds valid: words, never "valid". */
     fw_params_default(&s);
     for (int r = 0; r <= FW_RULE_COUNT; ++r) {
         const fw_param_fault f = {FP_SLIDE_VMAX, (fw_param_rule)r};
-        param_explain_fault(&s, f, err, sizeof err);
+        param_explain_fault(&s, f, FW_RATES_BUILT_IN, err, sizeof err);
         if (!err[0] || strstr(err, "valid") == err || strstr(err, "is valid"))
             fail_msg("rule %d: '%s'", r, err);
     }
+}
+
+/* The same rules for a controller at other rates (tse-sim --step-hz, a board whose INFO says so): a
+ * file, an explanation and the speed limit are judged at them.  At 100 kHz step interrupts (10 us)
+ * and 1 kHz segments: a 4 us pulse leaves 6 us low before a step one tick later (taken; at 200 kHz
+ * it leaves 1 us: refused); 6 us leaves 4 us (refused, at most 10 / 2 = 5 us); a segment that
+ * changes direction holds 100 ticks less 1 + 1 for a 5 us DIR set-up: 98 steps,
+ * 0.9 x 98000 / 1.28M = 0.06890625 m/s. */
+static void test_other_rates(void **state)
+{
+    (void)state;
+    const fw_rates slow = {100000, 1000};
+    const char *p = scratch_path("rates.params");
+    const char *text = "step_pulse_ns = 4000\n";
+    put_file(p, text, strlen(text));
+    fw_param_set s;
+    fw_params_default(&s);
+    char err[512] = "";
+    assert_int_equal(param_file_read(p, &s, FW_RATES_BUILT_IN, err, sizeof err), -1);
+    assert_contains(err, "rates.params:1: step_pulse_ns = 4000 ns leaves 1000 ns low");
+    assert_int_equal(s.v[FP_STEP_PULSE_NS], 2500); /* untouched */
+    assert_int_equal(param_file_read(p, &s, slow, err, sizeof err), 0);
+    assert_int_equal(s.v[FP_STEP_PULSE_NS], 4000);
+    param_explain_invalid(&s, slow, err, sizeof err);
+    assert_string_equal(err, "the set is valid");
+    assert_int_equal(param_file_write(p, &s, FW_RATES_BUILT_IN, err, sizeof err), -1);
+    assert_int_equal(param_file_write(p, &s, slow, err, sizeof err), 0);
+    s.v[FP_STEP_PULSE_NS] = 6000;
+    param_explain_invalid(&s, slow, err, sizeof err);
+    assert_string_equal(err, "step_pulse_ns = 6000 ns leaves 4000 ns low before the same slide's next step, which "
+                             "may come 10000 ns later (1 step interrupt at 100 kHz for step_rate_max = 200000 1/s): "
+                             "the low time must be at least as long as the pulse (at most 5000 ns)");
+    fw_params_default(&s);
+    char b[512];
+    assert_contains(param_speed_limit_words(&s, slow, b, sizeof b),
+                    "in effect: 0.06891 m/s, set by the step generator: 0.9 x 98 steps per 1 ms control segment");
+    assert_contains(b, "(100 step interrupts at 100 kHz, less 2 for the DIR set-up");
+    assert_true(fabs(0.9 * 98000 / 1280000.0 - 0.06890625) < 1e-12);
 }
 
 /* The slide speed limit in effect, by hand: at 200 kHz a segment that changes direction has 200
@@ -380,17 +418,17 @@ static void test_speed_words(void **state)
     fw_param_set s;
     fw_params_default(&s);
     char b[512];
-    assert_string_equal(param_speed_limit_words(&s, b, sizeof b),
+    assert_string_equal(param_speed_limit_words(&s, FW_RATES_BUILT_IN, b, sizeof b),
                         "slide speed limit in effect: 0.1392 m/s, set by the step generator: 0.9 x 198 steps per 1 ms "
                         "control segment / steps_per_m = 1280000 1/m, 198 being the steps that fit in a segment that "
                         "changes direction (200 step interrupts at 200 kHz, less 2 for the DIR set-up of dir_setup_ns "
                         "= 5000 ns, one step every 1 for step_rate_max = 200000 1/s); slide_vmax = 0.15 m/s is higher");
     s.v[FP_SLIDE_VMAX] = 120000;
-    assert_string_equal(param_speed_limit_words(&s, b, sizeof b),
+    assert_string_equal(param_speed_limit_words(&s, FW_RATES_BUILT_IN, b, sizeof b),
                         "slide speed limit in effect: 0.12 m/s, slide_vmax (the step generator would allow 0.1392 m/s)");
     /* 60k/s: a step every 4 ticks (200k / 60k = 3.33), (200 - 2) / 4 = 49 steps, 0.9 x 49000 / 1.28M. */
     s.v[FP_STEP_RATE_MAX] = 60000;
-    assert_contains(param_speed_limit_words(&s, b, sizeof b), "in effect: 0.03445 m/s, set by the step generator: 0.9 x 49 steps");
+    assert_contains(param_speed_limit_words(&s, FW_RATES_BUILT_IN, b, sizeof b), "in effect: 0.03445 m/s, set by the step generator: 0.9 x 49 steps");
     assert_contains(b, "one step every 4 for step_rate_max = 60000 1/s");
     assert_true(fabs(0.9 * 49000 / 1280000.0 - 0.0344531) < 1e-6);
     for (int id = 0; id < FP_COUNT; ++id)
@@ -426,9 +464,9 @@ static void test_file_round_trip(void **state)
     char err[512] = "";
     fw_param_set def, s, changed;
     fw_params_default(&def);
-    assert_int_equal(param_file_write(p, &def, err, sizeof err), 0);
+    assert_int_equal(param_file_write(p, &def, FW_RATES_BUILT_IN, err, sizeof err), 0);
     changed_set(&s);
-    assert_int_equal(param_file_read(p, &s, err, sizeof err), 0);
+    assert_int_equal(param_file_read(p, &s, FW_RATES_BUILT_IN, err, sizeof err), 0);
     assert_memory_equal(&s, &def, sizeof s); /* every parameter is in the file */
 
     size_t n;
@@ -447,9 +485,9 @@ static void test_file_round_trip(void **state)
     assert_int_equal(access(scratch_path("rt.params.tmp"), F_OK), -1); /* nothing left behind */
 
     changed_set(&changed);
-    assert_int_equal(param_file_write(p, &changed, err, sizeof err), 0);
+    assert_int_equal(param_file_write(p, &changed, FW_RATES_BUILT_IN, err, sizeof err), 0);
     fw_params_default(&s);
-    assert_int_equal(param_file_read(p, &s, err, sizeof err), 0);
+    assert_int_equal(param_file_read(p, &s, FW_RATES_BUILT_IN, err, sizeof err), 0);
     assert_memory_equal(&s, &changed, sizeof s);
     assert_contains(get_file(p, &n), "\nslide_vmax = 0.123457\n");
 }
@@ -465,7 +503,7 @@ static void test_dump_round_trip(void **state)
     const char *p = scratch_path("dump.params");
     FILE *f = fopen(p, "w");
     assert_non_null(f);
-    param_file_dump(f, &c, "parameters of node 1");
+    param_file_dump(f, &c, FW_RATES_BUILT_IN, "parameters of node 1");
     assert_int_equal(fclose(f), 0);
     size_t n;
     const char *text = get_file(p, &n);
@@ -478,7 +516,7 @@ static void test_dump_round_trip(void **state)
 
     char err[512] = "";
     fw_params_default(&back);
-    if (param_file_read(p, &back, err, sizeof err) != 0)
+    if (param_file_read(p, &back, FW_RATES_BUILT_IN, err, sizeof err) != 0)
         fail_msg("tse-sim's reader refused the dump: %s", err);
     assert_memory_equal(&back, &c, sizeof c);
 
@@ -508,7 +546,7 @@ static void saved_into(const char *before, size_t before_len, const fw_param_set
     put_file(p, before, before_len);
     assert_int_equal(chmod(p, 0640), 0);
     char err[512] = "";
-    if (param_file_write(p, s, err, sizeof err) != 0)
+    if (param_file_write(p, s, FW_RATES_BUILT_IN, err, sizeof err) != 0)
         fail_msg("not written: %s", err);
     size_t n;
     const char *after = get_file(p, &n);
@@ -520,7 +558,7 @@ static void saved_into(const char *before, size_t before_len, const fw_param_set
     assert_int_equal(access(scratch_path("user.params.tmp"), F_OK), -1);
     fw_param_set back;
     fw_params_default(&back);
-    if (param_file_read(p, &back, err, sizeof err) != 0)
+    if (param_file_read(p, &back, FW_RATES_BUILT_IN, err, sizeof err) != 0)
         fail_msg("the saved file does not read: %s", err);
     assert_memory_equal(&back, s, sizeof back);
 }
@@ -575,7 +613,7 @@ static void test_save_keeps_user_file(void **state)
     static const char broken[] = "# mine\nslide_vmax = fast\n";
     put_file(p, broken, sizeof broken - 1);
     char err[512] = "";
-    assert_int_equal(param_file_write(p, &s, err, sizeof err), -1);
+    assert_int_equal(param_file_write(p, &s, FW_RATES_BUILT_IN, err, sizeof err), -1);
     assert_contains(err, "which does not read as a parameter file now: ");
     assert_contains(err, "user.params:2: slide_vmax: 'fast' is not one finite number (in m/s)");
     size_t n;
@@ -589,7 +627,7 @@ static void read_ok(const char *text, fw_param_set *s)
     put_file(p, text, strlen(text));
     char err[512] = "";
     fw_params_default(s);
-    if (param_file_read(p, s, err, sizeof err) != 0)
+    if (param_file_read(p, s, FW_RATES_BUILT_IN, err, sizeof err) != 0)
         fail_msg("refused: %s", err);
 }
 
@@ -619,7 +657,7 @@ static void test_file_spellings(void **state)
     changed_set(&want);
     want.v[FP_L] = 1700000;
     char err[512];
-    assert_int_equal(param_file_read(p, &s, err, sizeof err), 0);
+    assert_int_equal(param_file_read(p, &s, FW_RATES_BUILT_IN, err, sizeof err), 0);
     assert_memory_equal(&s, &want, sizeof s);
 }
 
@@ -632,7 +670,7 @@ static void file_error_from(const fw_param_set *start, const char *text, size_t 
     put_file(p, text, len);
     fw_param_set s = *start;
     char err[512] = "", want[512];
-    if (param_file_read(p, &s, err, sizeof err) == 0)
+    if (param_file_read(p, &s, FW_RATES_BUILT_IN, err, sizeof err) == 0)
         fail_msg("accepted: %s", text);
     snprintf(want, sizeof want, want_fmt, p);
     if (prefix) {
@@ -692,7 +730,7 @@ static void test_file_errors(void **state)
     /* No file at all. */
     fw_param_set s = c;
     char err[512];
-    assert_int_equal(param_file_read(scratch_path("absent.params"), &s, err, sizeof err), -1);
+    assert_int_equal(param_file_read(scratch_path("absent.params"), &s, FW_RATES_BUILT_IN, err, sizeof err), -1);
     assert_contains(err, "absent.params: cannot open: No such file or directory");
     assert_memory_equal(&s, &c, sizeof s);
 }
@@ -708,7 +746,7 @@ static void test_write_errors(void **state)
     fw_params_default(&s);
     s.v[FP_ALPHA_MIN] = 1300000; /* a set the firmware refuses is not written */
     char err[512] = "";
-    assert_int_equal(param_file_write(p, &s, err, sizeof err), -1);
+    assert_int_equal(param_file_write(p, &s, FW_RATES_BUILT_IN, err, sizeof err), -1);
     assert_contains(err, "keep.params: not written: alpha_min = 1.3 rad must be below alpha_max = 1.215271 rad");
     size_t n;
     assert_string_equal(get_file(p, &n), old);
@@ -716,13 +754,13 @@ static void test_write_errors(void **state)
 
     /* The temporary cannot be made. */
     fw_params_default(&s);
-    assert_int_equal(param_file_write(scratch_path("no/such/dir/p.params"), &s, err, sizeof err), -1);
+    assert_int_equal(param_file_write(scratch_path("no/such/dir/p.params"), &s, FW_RATES_BUILT_IN, err, sizeof err), -1);
     assert_contains(err, "p.params.tmp: cannot create: No such file or directory");
 
     /* The rename cannot replace what is there (a directory): it stays, the temporary goes. */
     const char *d = scratch_path("adir");
     assert_int_equal(mkdir(d, 0700), 0);
-    assert_int_equal(param_file_write(d, &s, err, sizeof err), -1);
+    assert_int_equal(param_file_write(d, &s, FW_RATES_BUILT_IN, err, sizeof err), -1);
     assert_contains(err, "adir: cannot replace it with");
     struct stat st;
     assert_int_equal(stat(d, &st), 0);
@@ -736,7 +774,8 @@ int main(void)
         cmocka_unit_test(test_lookup),        cmocka_unit_test(test_si_units),
         cmocka_unit_test(test_from_text),     cmocka_unit_test(test_refused_values),
         cmocka_unit_test(test_to_text),       cmocka_unit_test(test_explain),
-        cmocka_unit_test(test_explain_timing), cmocka_unit_test(test_speed_words),
+        cmocka_unit_test(test_explain_timing), cmocka_unit_test(test_other_rates),
+        cmocka_unit_test(test_speed_words),
         cmocka_unit_test(test_file_round_trip), cmocka_unit_test(test_file_spellings),
         cmocka_unit_test(test_dump_round_trip), cmocka_unit_test(test_save_keeps_user_file),
         cmocka_unit_test(test_file_errors),   cmocka_unit_test(test_write_errors),

@@ -83,4 +83,17 @@ done
 check "the defaults at 400 kHz step interrupts: refused (exit 2), naming the rates" \
   test $rc -eq 2 -a -n "$(grep 'not even its default parameters run at 400000 Hz step interrupts' "$tmp/err")"
 
+# A file is judged at the simulator's rates: a 6 us pulse fits 100 kHz step interrupts' 10 us
+# (4 us low before a step one tick later: refused, at most half of 10 us), a 4 us one does (6 us
+# low), which at the built-in 200 kHz leaves 1 us low (refused above as 6 us is).
+printf 'step_pulse_ns = 4000\n' >"$tmp/slow.params"
+"$T" --iface nosuchcan0 --node 1 --params "$tmp/slow.params" >/dev/null 2>"$tmp/err"; rc=$?
+check "a 4 us pulse at 200 kHz: refused (exit 2) with the built-in rates' figures" \
+  test $rc -eq 2 -a -n "$(grep 'slow.params:1: step_pulse_ns = 4000 ns leaves 1000 ns low' "$tmp/err")"
+"$T" --iface nosuchcan0 --node 1 --step-hz 100000 --params "$tmp/slow.params" >/dev/null 2>"$tmp/err"; rc=$?
+check "the same file at --step-hz 100000: taken (then no CAN: exit 1)" test $rc -eq 1
+"$T" --iface nosuchcan0 --node 1 --step-hz 100000 --params "$tmp/pulse.params" >/dev/null 2>"$tmp/err"; rc=$?
+check "a 6 us pulse at --step-hz 100000: refused with that rate's figures" \
+  test $rc -eq 2 -a -n "$(grep 'pulse.params:1: step_pulse_ns = 6000 ns leaves 4000 ns low before the same slide.s next step, which may come 10000 ns later (1 step interrupt at 100 kHz' "$tmp/err")"
+
 check_done

@@ -32,7 +32,7 @@ static void test_save_then_load(void **state)
     const char *p = scratch_path("sim.params");
     char err[512] = "";
     sim_param_store st;
-    assert_int_equal(sim_param_store_open(&st, p, NULL, err, sizeof err), 0);
+    assert_int_equal(sim_param_store_open(&st, p, FW_RATES_BUILT_IN, NULL, err, sizeof err), 0);
     hal_storage h = sim_param_store_hal(&st);
     uint8_t buf[256];
     assert_int_equal(h.load(h.ctx, buf, sizeof buf), 0); /* nothing stored: the firmware's defaults */
@@ -55,7 +55,7 @@ static void test_save_then_load(void **state)
 
     /* The next start: a fresh store on that file hands fw_init the same record. */
     sim_param_store again;
-    assert_int_equal(sim_param_store_open(&again, p, NULL, err, sizeof err), 0);
+    assert_int_equal(sim_param_store_open(&again, p, FW_RATES_BUILT_IN, NULL, err, sizeof err), 0);
     h = sim_param_store_hal(&again);
     uint8_t back[256];
     const int m = h.load(h.ctx, back, sizeof back);
@@ -79,7 +79,7 @@ static void test_bad_file_does_not_open(void **state)
     fclose(f);
     char err[512] = "", want[256];
     sim_param_store st;
-    assert_int_equal(sim_param_store_open(&st, p, NULL, err, sizeof err), -1);
+    assert_int_equal(sim_param_store_open(&st, p, FW_RATES_BUILT_IN, NULL, err, sizeof err), -1);
     snprintf(want, sizeof want, "%s:3: slide_amax: 'lots' is not one finite number (in m/s^2)", p);
     assert_string_equal(err, want);
     char text[256];
@@ -98,14 +98,14 @@ static void test_save_that_cannot_be_done(void **state)
     const size_t n = fw_params_serialize(&set, buf, sizeof buf);
 
     /* No file given. */
-    assert_int_equal(sim_param_store_open(&st, NULL, NULL, err, sizeof err), 0);
+    assert_int_equal(sim_param_store_open(&st, NULL, FW_RATES_BUILT_IN, NULL, err, sizeof err), 0);
     hal_storage h = sim_param_store_hal(&st);
     assert_int_equal(h.save(h.ctx, buf, n), -1);
     assert_non_null(strstr(st.err, "no parameter file"));
 
     /* A record that is not one (a flipped bit breaks its CRC). */
     const char *p = scratch_path("never.params");
-    assert_int_equal(sim_param_store_open(&st, p, NULL, err, sizeof err), 0);
+    assert_int_equal(sim_param_store_open(&st, p, FW_RATES_BUILT_IN, NULL, err, sizeof err), 0);
     h = sim_param_store_hal(&st);
     buf[10] ^= 1u;
     assert_int_equal(h.save(h.ctx, buf, n), -1);
@@ -113,7 +113,7 @@ static void test_save_that_cannot_be_done(void **state)
     buf[10] ^= 1u;
 
     /* A directory that does not exist. */
-    assert_int_equal(sim_param_store_open(&st, scratch_path("no/such/x.params"), NULL, err, sizeof err), 0);
+    assert_int_equal(sim_param_store_open(&st, scratch_path("no/such/x.params"), FW_RATES_BUILT_IN, NULL, err, sizeof err), 0);
     h = sim_param_store_hal(&st);
     assert_int_equal(h.save(h.ctx, buf, n), -1);
     assert_non_null(strstr(st.err, "cannot create"));

@@ -116,7 +116,7 @@ static int started_with(void)
 {
     sim_param_store st;
     char err[512];
-    if (sim_param_store_open(&st, path, NULL, err, sizeof err) != 0)
+    if (sim_param_store_open(&st, path, FW_RATES_BUILT_IN, NULL, err, sizeof err) != 0)
         return -1;
     const hal_storage h = sim_param_store_hal(&st);
     uint8_t buf[256];
@@ -150,7 +150,7 @@ static int save_in_child(int n, rlim_t limit)
             _exit(4);
         sim_param_store st;
         char err[512];
-        if (sim_param_store_open(&st, path, NULL, err, sizeof err) != 0)
+        if (sim_param_store_open(&st, path, FW_RATES_BUILT_IN, NULL, err, sizeof err) != 0)
             _exit(5);
         const hal_storage h = sim_param_store_hal(&st);
         _exit(h.save(h.ctx, rec, len) == 0 ? 0 : 6);
@@ -167,7 +167,7 @@ static void save_here(int n)
     const size_t len = record_of(n, rec, sizeof rec);
     sim_param_store st;
     char err[512];
-    assert_int_equal(sim_param_store_open(&st, path, NULL, err, sizeof err), 0);
+    assert_int_equal(sim_param_store_open(&st, path, FW_RATES_BUILT_IN, NULL, err, sizeof err), 0);
     const hal_storage h = sim_param_store_hal(&st);
     assert_int_equal(h.save(h.ctx, rec, len), 0);
 }
@@ -304,7 +304,7 @@ static void test_write_failure_at_every_byte(void **state)
     for (long b = 0; b <= new_len; ++b) {
         if (reopen) {
             put_file(path, old_bytes, old_len);
-            assert_int_equal(sim_param_store_open(&st, path, NULL, err, sizeof err), 0);
+            assert_int_equal(sim_param_store_open(&st, path, FW_RATES_BUILT_IN, NULL, err, sizeof err), 0);
         }
         const hal_storage h = sim_param_store_hal(&st);
         const struct rlimit lim = {(rlim_t)b, was.rlim_max};
@@ -340,7 +340,7 @@ static void test_write_failure_at_every_byte(void **state)
             put_file(tmp_path, new_bytes, b);
             fw_param_set s;
             fw_params_default(&s);
-            if (param_file_read(tmp_path, &s, err, sizeof err) != 0)
+            if (param_file_read(tmp_path, &s, FW_RATES_BUILT_IN, err, sizeof err) != 0)
                 ++in_place_refused;
             else if (memcmp(&s, &s2, sizeof s) == 0)
                 ++in_place_new;

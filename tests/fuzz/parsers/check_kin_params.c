@@ -71,8 +71,10 @@ void check_kin_params(const char *data, size_t size, unsigned opt)
     char *mine = strdup(text);
     FUZZ_CHECK(mine != NULL);
 
+    fw_param_set base;
+    base_set(&before, &base);
     param_reading r;
-    base_set(&before, &r.set);
+    param_reading_start(&r, &base);
     char want[512], err[512];
     memset(err, 'Z', sizeof err);
     const int verdict = judge == KIN_PARAMS_DESIGN ? param_text_scan(mine, NAME, &r, want, sizeof want)

@@ -130,7 +130,7 @@ static void check_merged(const char *data, size_t size, const fw_param_set *s)
     fw_param_set back;
     fw_params_default(&back);
     char err[512];
-    const int rc = param_file_read(path, &back, err, sizeof err);
+    const int rc = param_file_read(path, &back, FW_RATES_BUILT_IN, err, sizeof err);
     if (rc != 0)
         fprintf(stderr, "%s\n", err);
     FUZZ_CHECK(rc == 0 && !memcmp(&back, &t, sizeof back));
@@ -211,7 +211,7 @@ static void check_written(const fw_param_set *s, unsigned opt)
     fw_param_set r;
     fw_params_default(&r);
     char err[512] = "";
-    const int rc = param_file_read(path, &r, err, sizeof err);
+    const int rc = param_file_read(path, &r, FW_RATES_BUILT_IN, err, sizeof err);
     if (rc != 0)
         fprintf(stderr, "%s\n", err);
     FUZZ_CHECK(rc == 0 && !memcmp(&r, s, sizeof r));
@@ -231,7 +231,7 @@ void check_param_file(const char *data, size_t size, unsigned opt)
     const char *path = mem_file(data, size);
     char err[512];
     memset(err, 'Z', sizeof err);
-    const int rc = param_file_read(path, &s, err, sizeof err);
+    const int rc = param_file_read(path, &s, FW_RATES_BUILT_IN, err, sizeof err);
     if (rc != 0) {
         FUZZ_CHECK(rc == -1);
         FUZZ_CHECK(!memcmp(&s, &before, sizeof s));
@@ -247,6 +247,6 @@ void check_param_file(const char *data, size_t size, unsigned opt)
     /* Saving needs a file that reads from the defaults, as tse-sim's does. */
     fw_param_set d;
     fw_params_default(&d);
-    if (!(opt & 1) || param_file_read(path, &d, err, sizeof err) == 0)
+    if (!(opt & 1) || param_file_read(path, &d, FW_RATES_BUILT_IN, err, sizeof err) == 0)
         check_merged(data, size, &s);
 }
