@@ -37,7 +37,17 @@ def pose_at_rest():
                              capture_output=True, text=True, check=True).stdout.strip().split(",")
         assert out[0] == "ok", f"no pose for the rig's slides: {out}"
         return [float(v) for v in out[2:8]]
-    rest = re.findall(r"at rest: plate (\S+) (\S+) (\S+) m, (\S+) (\S+) (\S+) rad", sim_log())
+    # tse-sim logs the rest in the control tick that sends the STATUS saying idle, just after it:
+    # a client that has that STATUS may read the log first (a loaded machine preempts tse-sim
+    # between the two).  So the rest after the latest motion is awaited, a bounded time: a motion
+    # that ended otherwise (an e-stop, a fault) logs none, and the latest rest is what there is.
+    deadline = time.monotonic() + 2.0 * float(os.environ.get("TSE_VM_SLOW", "1"))
+    while True:
+        log = sim_log()
+        if log.rfind("at rest: plate") > log.rfind("motion accepted") or time.monotonic() > deadline:
+            break
+        time.sleep(0.02)
+    rest = re.findall(r"at rest: plate (\S+) (\S+) (\S+) m, (\S+) (\S+) (\S+) rad", log)
     assert rest, "the simulator reported no rest"
     return [float(v) for v in rest[-1]]
 
