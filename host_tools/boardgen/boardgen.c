@@ -1,9 +1,8 @@
-/* boardgen: what the board descriptions (hal/stm32f4/boards/NAME.h) say, printed for people and
- * tools.
+/* boardgen: what the board descriptions (hal/stm32f4/boards/NAME.h) say, printed for people.
  *   boardgen markdown     docs/boards.md (the build's `boards_docs` target rewrites it; the test
  *                         boards_docs_current checks it is current)
- *   boardgen emu NAME     board NAME as the emulator's machine properties (docs/emulator.md)
- * Exit 0, or 2 for a usage error or an unknown board (naming the known ones). */
+ * Exit 0, or 2 for a usage error.  (The emulator reads a board from its image instead:
+ * emu/board_props.py.) */
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
@@ -111,48 +110,12 @@ static void markdown(void)
     }
 }
 
-/* The pins as "C0,C1,..." (a port letter and a number each; "-" for none). */
-static void pins(const char *key, const uint8_t *p, unsigned n)
-{
-    printf(",%s=", key);
-    for (unsigned k = 0; k < n; ++k) {
-        if (p[k] == BOARD_PIN_NONE)
-            printf("%s-", k ? ":" : "");
-        else
-            printf("%s%c%u", k ? ":" : "", 'A' + BOARD_PIN_PORT(p[k]), BOARD_PIN_NUM(p[k]));
-    }
-}
-
-static void emu(const board_desc *d)
-{
-    printf("hse-hz=%u", (unsigned)d->hse_hz);
-    pins("step-pins", d->step, BOARD_SLIDES);
-    pins("dir-pins", d->dir, BOARD_SLIDES);
-    pins("enable-pin", d->enable, 1);
-    pins("lim-pins", d->lim, BOARD_SLIDES);
-    pins("estop-pin", &d->estop, 1);
-    pins("can-pins", (const uint8_t[]){d->can_rx, d->can_tx}, 2);
-    printf(",enable-active-low=%s\n", d->enable_active_high ? "off" : "on");
-}
-
 int main(int argc, char **argv)
 {
     if (argc == 2 && strcmp(argv[1], "markdown") == 0) {
         markdown();
         return 0;
     }
-    if (argc == 3 && strcmp(argv[1], "emu") == 0) {
-        for (unsigned b = 0; b < board_desc_count; ++b)
-            if (strcmp(board_descs[b]->name, argv[2]) == 0) {
-                emu(board_descs[b]);
-                return 0;
-            }
-        fprintf(stderr, "boardgen: unknown board '%s'; known:", argv[2]);
-        for (unsigned b = 0; b < board_desc_count; ++b)
-            fprintf(stderr, " %s", board_descs[b]->name);
-        fprintf(stderr, "\n");
-        return 2;
-    }
-    fprintf(stderr, "usage: boardgen markdown | boardgen emu NAME\n");
+    fprintf(stderr, "usage: boardgen markdown\n");
     return 2;
 }

@@ -39,6 +39,12 @@
 #define BOARD_PLANTED_EXPECT 0
 #endif
 
+/* The six of each, for the table and the identity alike. */
+#define STEP_PINS {BOARD_STEP1, BOARD_STEP2, BOARD_STEP3, BOARD_STEP4, BOARD_STEP5, BOARD_STEP6}
+#define DIR_PINS {BOARD_DIR1, BOARD_DIR2, BOARD_DIR3, BOARD_DIR4, BOARD_DIR5, BOARD_DIR6}
+#define LIM_PINS {BOARD_LIM1, BOARD_LIM2, BOARD_LIM3, BOARD_LIM4, BOARD_LIM5, BOARD_LIM6}
+#define ENABLE_PINS {BOARD_ENABLE1, BOARD_ENABLE2, BOARD_ENABLE3, BOARD_ENABLE4, BOARD_ENABLE5, BOARD_ENABLE6}
+
 const board_desc BOARD_DESC_SYMBOL = {
     .name = BOARD_NAME,
     .sources = BOARD_SOURCES,
@@ -52,11 +58,11 @@ const board_desc BOARD_DESC_SYMBOL = {
     .pll_q = BOARD_PLL_Q,
     .app_addr = BOARD_APP_ADDR,
     .param_sector = BOARD_PARAM_SECTOR,
-    .step = {BOARD_STEP1, BOARD_STEP2, BOARD_STEP3, BOARD_STEP4, BOARD_STEP5, BOARD_STEP6},
-    .dir = {BOARD_DIR1, BOARD_DIR2, BOARD_DIR3, BOARD_DIR4, BOARD_DIR5, BOARD_DIR6},
-    .lim = {BOARD_LIM1, BOARD_LIM2, BOARD_LIM3, BOARD_LIM4, BOARD_LIM5, BOARD_LIM6},
+    .step = STEP_PINS,
+    .dir = DIR_PINS,
+    .lim = LIM_PINS,
     .limh = {BOARD_LIMH1, BOARD_LIMH2, BOARD_LIMH3, BOARD_LIMH4, BOARD_LIMH5, BOARD_LIMH6},
-    .enable = {BOARD_ENABLE1, BOARD_ENABLE2, BOARD_ENABLE3, BOARD_ENABLE4, BOARD_ENABLE5, BOARD_ENABLE6},
+    .enable = ENABLE_PINS,
     .enable_active_high = BOARD_ENABLE_ACTIVE_HIGH,
     .limh_fitted = BOARD_LIMH_FITTED,
     .estop = BOARD_ESTOP,
@@ -74,5 +80,22 @@ const board_desc BOARD_DESC_SYMBOL = {
 #ifdef TSE_BOARD_IMAGE
 /* The image's identity, where a tool finds it without symbols (objcopy -j .tse_board): the
  * emulator's harness reads it to wire the rig to this board's pins (docs/emulator.md). */
-__attribute__((section(".tse_board"), used)) const char tse_board_id[] = "tse-board:" BOARD_NAME;
+__attribute__((section(".tse_board"), used)) const board_identity tse_board_identity = {
+    .id = "tse-board:" BOARD_NAME,
+    .hse_hz = BOARD_HSE_HZ,
+    .app_addr = BOARD_APP_ADDR,
+    .step = STEP_PINS,
+    .dir = DIR_PINS,
+    .lim = LIM_PINS,
+    .enable = ENABLE_PINS,
+    .enable_active_high = BOARD_ENABLE_ACTIVE_HIGH,
+    .estop = BOARD_ESTOP,
+    .led = BOARD_LED,
+    .led_active_high = BOARD_LED_ACTIVE_HIGH,
+    .can_rx = BOARD_CAN_RX,
+    .can_tx = BOARD_CAN_TX,
+    .boot_usart = BOARD_BOOT_USART,
+    .boot_tx = BOARD_BOOT_TX,
+};
+_Static_assert(sizeof(board_identity) == 48 + 8 + 4 * BOARD_SLIDES + 8, "board_identity: no padding");
 #endif

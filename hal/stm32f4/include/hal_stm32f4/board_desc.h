@@ -80,6 +80,19 @@ typedef struct {
     const char *planted_expect;
 } board_desc;
 
+/* What a production image says of its board in its .tse_board section (src/board_desc.c), for a
+ * tool with only the image (emu/board_props.py wires the emulator's rig to these pins): the
+ * string "tse-board:NAME", then the pins as board_desc holds them.  Little-endian, no padding
+ * between the fields (all bytes after the two words). */
+typedef struct {
+    char id[48];        /* "tse-board:NAME", NUL-padded */
+    uint32_t hse_hz;
+    uint32_t app_addr;
+    uint8_t step[BOARD_SLIDES], dir[BOARD_SLIDES], lim[BOARD_SLIDES], enable[BOARD_SLIDES];
+    uint8_t enable_active_high, estop, led, led_active_high;
+    uint8_t can_rx, can_tx, boot_usart, boot_tx;
+} board_identity;
+
 /* The board this image is built for (src/board_desc.c, compiled with its description). */
 extern const board_desc tse_board_desc;
 
