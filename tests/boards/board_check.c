@@ -2,20 +2,20 @@
  * image wrong on the board, against the tables below, written from ST's documents, not from the
  * drivers:
  *   - two signals on one pin;
- *   - a pin the part's package does not have (STM32F405/407 datasheet DocID022152, table 7, pin
- *     definitions: LQFP64 has PA0..15, PB0..15, PC0..15, PD2, PH0/PH1; LQFP100 ports A..E; LQFP144
+ *   - a pin the part's package does not have (STM32F405/407 datasheet DocID022152, its pin and ball
+ *     definitions table: LQFP64 has PA0..15, PB0..15, PC0..15, PD2, PH0/PH1; LQFP100 ports A..E; LQFP144
  *     ports A..G; PH0/PH1 always), or a part in a package it does not come in (F407: LQFP100 and
  *     LQFP144, no LQFP64);
  *   - the crystal's pins PH0/PH1 used for a signal;
- *   - a CAN pin without CAN1 on alternate function 9 (datasheet table 9: CAN1_RX on PA11, PB8,
+ *   - a CAN pin without CAN1 on alternate function 9 (the datasheet's alternate function mapping: CAN1_RX on PA11, PB8,
  *     PD0; CAN1_TX on PA12, PB9, PD1);
- *   - a boot-line TX pin without its USART's TX (table 9: USART1_TX PA9, PB6; USART2_TX PA2, PD5;
+ *   - a boot-line TX pin without its USART's TX (the same table: USART1_TX PA9, PB6; USART2_TX PA2, PD5;
  *     USART3_TX PB10, PC10, PD8, all AF7; USART6_TX PC6, PG14, AF8);
  *   - an application address that is not a flash sector's start, a parameter log whose sectors
  *     the part lacks, differ in size, lie below the application or leave it less than its flash
  *     budget (RM0090 table 5: sectors 0..3 16 KiB from 0x08000000, 4 64 KiB, then 128 KiB each;
  *     a 512 KiB part ends with sector 7, a 1 MiB part with 11);
- *   - a PLL off SYSCLK 168 MHz or USB 48 MHz, or outside the VCO's ranges (datasheet table 16/17
+ *   - a PLL off SYSCLK 168 MHz or USB 48 MHz, or outside the VCO's ranges (the datasheet's
  *     "main PLL characteristics": input 1..2 MHz, VCO 100..432 MHz; M 2..63, N 50..432).
  *
  *   board_check                 every board: exit 0 when none has a finding, else 1
@@ -56,7 +56,7 @@ static const char *name_of(uint8_t p)
     return b;
 }
 
-/* Datasheet table 7: does the package have the pin? */
+/* The datasheet's pin definitions: does the package have the pin? */
 static bool on_package(unsigned package, uint8_t p)
 {
     const unsigned port = p >> 4, n = p & 15u;
@@ -74,7 +74,7 @@ static bool on_package(unsigned package, uint8_t p)
     }
 }
 
-/* Datasheet table 9, CAN1 on AF9. */
+/* The datasheet's alternate function mapping: CAN1 on AF9. */
 static bool can1_af9(uint8_t p, bool rx)
 {
     static const char *const rx_pins[] = {"PA11", "PB8", "PD0"};
@@ -86,7 +86,7 @@ static bool can1_af9(uint8_t p, bool rx)
     return false;
 }
 
-/* Datasheet table 9: the TX pins of each USART and their AF. */
+/* The same: the TX pins of each USART and their AF. */
 static const struct {
     unsigned usart, af;
     const char *pin;

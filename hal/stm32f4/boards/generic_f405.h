@@ -1,10 +1,10 @@
 /* generic_f405: the project's own bench map, pins of the 64-pin package only, so that one map fits
  * an STM32F405RG or any F405/F407 board with an 8 MHz crystal (a Netduino Plus 2 serves as a bench
  * controller).  Source of every pin: docs/board.md's wiring (the project's own design, the map
- * pinmap.h held before issue 26), checked against the STM32F405/407 datasheet DocID022152 Rev 8,
- * table 7 (pin definitions, LQFP64 column; alternate functions, table 9). */
+ * pinmap.h held before issue 26), checked against the STM32F405/407 datasheet DocID022152,
+ * its pin definitions (LQFP64 column) and alternate function mapping tables. */
 #define BOARD_NAME "generic_f405"
-#define BOARD_SOURCES "project design (docs/board.md); STM32F405/407 datasheet DocID022152 Rev 8, tables 7 and 9"
+#define BOARD_SOURCES "project design (docs/board.md); STM32F405/407 datasheet DocID022152, its pin definitions and alternate function mapping tables"
 #define BOARD_PART BOARD_PART_F405 /* STM32F405RGT6 */
 #define BOARD_PACKAGE BOARD_LQFP64
 #define BOARD_FLASH_KIB 1024
@@ -42,9 +42,9 @@
 #define BOARD_ESTOP BOARD_PIN(A, 8) /* project design: EXTI8 */
 #define BOARD_LED BOARD_PIN(A, 10)  /* project design: the Netduino Plus 2's user LED */
 #define BOARD_LED_ACTIVE_HIGH 1
-#define BOARD_CAN_RX BOARD_PIN(B, 8) /* project design; CAN1_RX on PB8 is AF9 (datasheet table 9) */
-#define BOARD_CAN_TX BOARD_PIN(B, 9) /* project design; CAN1_TX on PB9 is AF9 (datasheet table 9) */
+#define BOARD_CAN_RX BOARD_PIN(B, 8) /* project design; CAN1_RX on PB8 is AF9 (datasheet AF table) */
+#define BOARD_CAN_TX BOARD_PIN(B, 9) /* project design; CAN1_TX on PB9 is AF9 (datasheet AF table) */
 #define BOARD_CAN_AF 9
 #define BOARD_BOOT_USART 1
-#define BOARD_BOOT_TX BOARD_PIN(A, 9) /* project design; USART1_TX on PA9 is AF7 (datasheet table 9) */
+#define BOARD_BOOT_TX BOARD_PIN(A, 9) /* project design; USART1_TX on PA9 is AF7 (datasheet AF table) */
 #define BOARD_BOOT_TX_AF 7

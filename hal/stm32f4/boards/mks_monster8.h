@@ -12,7 +12,7 @@
  * inputs a debugger must connect under reset.  PC13..PC15 are in the backup domain (weak outputs,
  * at most 2 MHz, datasheet): enough for 200 kHz steps into a stepstick's input. */
 #define BOARD_NAME "mks_monster8"
-#define BOARD_SOURCES "Klipper config/generic-mks-monster8.cfg; MKS-Monster8 repository (README.md, Marlin pins_MKS_MONSTER8.h); uCNC boardmap_mks_monster8_v2.h; STM32F405/407 datasheet DocID022152 Rev 8, table 9"
+#define BOARD_SOURCES "Klipper config/generic-mks-monster8.cfg; MKS-Monster8 repository (README.md, Marlin pins_MKS_MONSTER8.h); uCNC boardmap_mks_monster8_v2.h; STM32F405/407 datasheet DocID022152, alternate function mapping table"
 #define BOARD_PART BOARD_PART_F407 /* [R] STM32F407VET6 */
 #define BOARD_PACKAGE BOARD_LQFP100
 #define BOARD_FLASH_KIB 512        /* [R] 512K flash: sectors 0..7 */
@@ -54,9 +54,9 @@
 #define BOARD_ESTOP BOARD_PIN(A, 8) /* [M] SERVO0_PIN PA8, the 3D TOUCH connector; EXTI8 */
 #define BOARD_LED BOARD_PIN_NONE    /* no user LED on a GPIO in [K], [M] or [U] */
 #define BOARD_LED_ACTIVE_HIGH 1
-#define BOARD_CAN_RX BOARD_PIN(B, 8) /* [M] "I2C_SCL and CAN_RX" PB8 (AF9, datasheet table 9) */
-#define BOARD_CAN_TX BOARD_PIN(B, 9) /* [M] "I2C_SDA and CAN_TX" PB9 (AF9, datasheet table 9) */
+#define BOARD_CAN_RX BOARD_PIN(B, 8) /* [M] "I2C_SCL and CAN_RX" PB8 (AF9, datasheet AF table) */
+#define BOARD_CAN_TX BOARD_PIN(B, 9) /* [M] "I2C_SDA and CAN_TX" PB9 (AF9, datasheet AF table) */
 #define BOARD_CAN_AF 9
 #define BOARD_BOOT_USART 1
-#define BOARD_BOOT_TX BOARD_PIN(A, 9) /* [R] usart1 PA9 (AF7, datasheet table 9) */
+#define BOARD_BOOT_TX BOARD_PIN(A, 9) /* [R] usart1 PA9 (AF7, datasheet AF table) */
 #define BOARD_BOOT_TX_AF 7

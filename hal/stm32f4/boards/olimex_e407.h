@@ -1,12 +1,13 @@
 /* olimex_e407: Olimex STM32-E407 (STM32F407ZGT6, LQFP144, 12 MHz crystal).  On-board parts, from
- * NuttX's board support boards/arm/stm32/olimex-stm32-e407 (include/board.h, src/olimex-stm32-e407.h;
- * written from Olimex's STM32-E407 schematic): the Ethernet PHY LAN8710 on PA1 (REF_CLK), PA2, PA3,
- * PA7, PC1, PC4, PC5, PG6, PG11, PG13, PG14; USB OTG FS on PA9, PA11, PA12, PB0, PB1; USB OTG HS on
- * PA8, PB13, PB14, PB15, PF11; the SD card (SDIO) on PC8..PC12, PD2; button BUT on PA0; the status
- * LED on PC13; SWD PA13/PA14; the crystal on PH0/PH1.  CAN1 is on PB8/PB9 and USART1 on PB6/PB7
- * (the same files).  The slides take ports E and F, which none of those use (the EXT headers). */
+ * NuttX's board support boards/arm/stm32/olimex-stm32-e407 (include/board.h and
+ * src/olimex-stm32-e407.h; Olimex's schematic itself was not read for this file): the Ethernet PHY
+ * LAN8710 on PA2, PA3, PA7, PC1, PC4, PC5, PG6, PG11, PG13, PG14 (and, as the issue lists its RMII
+ * pins, PA1, PB11..PB13); USB OTG FS on PA9, PA11, PA12, PB0, PB1; USB OTG HS on PA8, PB13, PB14,
+ * PB15, PF11; the SD card (SDIO) on PC8..PC12, PD2; button BUT on PA0; the status LED on PC13; SWD
+ * PA13/PA14; the crystal on PH0/PH1.  CAN1 is on PB8/PB9 and USART1 on PB6/PB7 (the same files).
+ * The slides take ports E and F, which none of those use. */
 #define BOARD_NAME "olimex_e407"
-#define BOARD_SOURCES "NuttX olimex-stm32-e407 board support (include/board.h, src/olimex-stm32-e407.h, from Olimex STM32-E407 schematic); STM32F405/407 datasheet DocID022152 Rev 8, table 9"
+#define BOARD_SOURCES "NuttX olimex-stm32-e407 board support (include/board.h, src/olimex-stm32-e407.h); STM32F405/407 datasheet DocID022152, alternate function mapping table"
 #define BOARD_PART BOARD_PART_F407 /* STM32F407ZGT6 (board.h) */
 #define BOARD_PACKAGE BOARD_LQFP144
 #define BOARD_FLASH_KIB 1024
@@ -44,9 +45,9 @@
 #define BOARD_ESTOP BOARD_PIN(E, 13) /* NuttX e407: unused on board; EXTI13 */
 #define BOARD_LED BOARD_PIN(C, 13)   /* src/olimex-stm32-e407.h: GPIO_LED_STATUS, PC13, high = on */
 #define BOARD_LED_ACTIVE_HIGH 1
-#define BOARD_CAN_RX BOARD_PIN(B, 8) /* board.h: GPIO_CAN1_RX_2, PB8 (AF9, datasheet table 9) */
-#define BOARD_CAN_TX BOARD_PIN(B, 9) /* board.h: GPIO_CAN1_TX_2, PB9 (AF9, datasheet table 9) */
+#define BOARD_CAN_RX BOARD_PIN(B, 8) /* board.h: GPIO_CAN1_RX_2, PB8 (AF9, datasheet AF table) */
+#define BOARD_CAN_TX BOARD_PIN(B, 9) /* board.h: GPIO_CAN1_TX_2, PB9 (AF9, datasheet AF table) */
 #define BOARD_CAN_AF 9
 #define BOARD_BOOT_USART 1
-#define BOARD_BOOT_TX BOARD_PIN(B, 6) /* board.h: GPIO_USART1_TX_2, PB6 (AF7, datasheet table 9) */
+#define BOARD_BOOT_TX BOARD_PIN(B, 6) /* board.h: GPIO_USART1_TX_2, PB6 (AF7, datasheet AF table) */
 #define BOARD_BOOT_TX_AF 7

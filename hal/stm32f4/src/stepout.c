@@ -56,7 +56,7 @@ static void build(signal_out *s, const uint8_t pins[BOARD_SLIDES])
 }
 
 /* Sets the pins of `high` and clears those of `low` (masks of slides). */
-static inline void write(const signal_out *s, uint32_t high, uint32_t low)
+static inline void put_pins(const signal_out *s, uint32_t high, uint32_t low)
 {
     if (s->bsrr) {
         *s->bsrr = s->bits[high] | (uint32_t)s->bits[low] << 16;
@@ -74,13 +74,13 @@ static void set_dir(void *ctx, uint8_t forward)
 {
     (void)ctx;
     const uint32_t f = forward & ALL;
-    write(&out.dir, f, ~f & ALL);
+    put_pins(&out.dir, f, ~f & ALL);
 }
 
 static void pulse(void *ctx, uint8_t mask)
 {
     (void)ctx;
-    write(&out.step, mask & ALL, 0);
+    put_pins(&out.step, mask & ALL, 0);
     /* (Re)start the one-shot: a pulse of another axis still high is lengthened, never cut. */
     TSE_TIM4->CNT = 0;
     TSE_TIM4->CR1 = TIM_CR1_OPM | TIM_CR1_URS | TIM_CR1_CEN;
@@ -91,7 +91,7 @@ void TIM4_IRQHandler(void)
 {
     TSE_TIM4->SR = 0;
     TSE_TIM4->CR1 = TIM_CR1_OPM | TIM_CR1_URS; /* stopped, should the one-pulse mode not be */
-    write(&out.step, 0, ALL);
+    put_pins(&out.step, 0, ALL);
 }
 
 static void drive_enable(bool on)
@@ -163,5 +163,5 @@ void board_outputs_safe(void)
     if (out.enables == 0)
         bind(outputs_desc, -1);
     drive_enable(false);
-    write(&out.step, 0, ALL);
+    put_pins(&out.step, 0, ALL);
 }
