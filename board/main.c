@@ -28,6 +28,11 @@
 #ifndef TSE_BOARD_NODE
 #define TSE_BOARD_NODE 1
 #endif
+/* The board this image is built for (CMake defines TSE_BOARD_NAME per image: board/CMakeLists.txt). */
+#ifndef TSE_BOARD_NAME
+#define TSE_BOARD_NAME "generic_f405"
+#endif
+#define BOARD_NAME TSE_BOARD_NAME
 
 /* The board's rates, the built-in ones (fw/limits.h); the controller reports them in INFO, and
  * tsectl and tse.can judge its paths and sets at what it reports. */
@@ -117,7 +122,7 @@ void board_control(void)
     /* The status LED: steady while enabled, a 1 Hz blink otherwise, fast in a fault. */
     const uint32_t period = s == FW_STATE_FAULT || s == FW_STATE_ESTOP ? 200u : 1000u;
     const bool on = fw_drives_of(b->fw) || (b->control_calls % period) < period / 2u;
-    PIN_LED_PORT->BSRR = on ? 1u << PIN_LED : 1u << (PIN_LED + 16u);
+    board_led_set(on);
     const uint32_t progress = fw_thread_progress(b->fw);
     if (b->feed && progress != b->fed_progress) {
         b->fed_progress = progress;
@@ -133,10 +138,10 @@ static void await_tick(void *ctx)
     __asm__ volatile("wfi" ::: "memory");
 }
 
-/* One line on USART1 (PA9) saying what the start-up found (bootline.h). */
+/* One line on the board's boot-line USART saying what the start-up found (bootline.h). */
 static void boot_line(const board_state *b)
 {
-    board_bootline_open(b->clocks.apb2_hz);
+    board_bootline_open(b->clocks.apb1_hz, b->clocks.apb2_hz);
     board_bootline_puts("tse-fw node ");
     board_bootline_dec(TSE_BOARD_NODE);
     board_bootline_puts(": boot faults ");
@@ -183,7 +188,7 @@ int main(void)
 
     fw_hal hal;
     memset(&hal, 0, sizeof hal);
-    hal.stepper = board_stepper_hal(b->clocks.apb1_timer_hz);
+    hal.stepper = board_stepper_hal(b->clocks.apb1_timer_hz, -1); /* the description's ENABLE level */
     hal.inputs = board_inputs_hal();
     hal.clock = board_clock_hal(b->clocks.apb1_timer_hz);
     hal.can = bxcan_hal(&b->can);

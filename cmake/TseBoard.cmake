@@ -9,17 +9,23 @@ function(tse_check_no_double target)
   endif()
 endfunction()
 
-# An image for the board: linked with the board's linker script, with a map file, a .bin and a
-# .hex beside the .elf, and its size printed.
-#   tse_board_image(TARGET [SEMIHOSTING])
+# An image for a board: linked with the board's linker script (cmake/TseBoards.cmake) and its
+# description, with a map file, a .bin and a .hex beside the .elf, and its size printed.
+#   tse_board_image(TARGET [SEMIHOSTING] [BOARD NAME])
 # SEMIHOSTING: a test or benchmark image for QEMU, linked with newlib's system-call stubs and
-# semihosting output; never the production image.
+# semihosting output; never the production image.  BOARD: default generic_f405.
 function(tse_board_image target)
-  cmake_parse_arguments(ARG "SEMIHOSTING" "" "" ${ARGN})
-  set_target_properties(${target} PROPERTIES SUFFIX ".elf")
-  target_link_options(${target} PRIVATE -T${TSE_BOARD_LDSCRIPT} -Wl,-Map=$<TARGET_FILE_DIR:${target}>/${target}.map
+  cmake_parse_arguments(ARG "SEMIHOSTING" "BOARD" "" ${ARGN})
+  if(NOT ARG_BOARD)
+    set(ARG_BOARD generic_f405)
+  endif()
+  tse_board_ldscript(${ARG_BOARD} ldscript)
+  tse_board_desc_library(${ARG_BOARD})
+  set_target_properties(${target} PROPERTIES SUFFIX ".elf" TSE_LDSCRIPT ${ldscript} TSE_BOARD ${ARG_BOARD}
+                        LINK_DEPENDS ${ldscript})
+  target_link_options(${target} PRIVATE -T${ldscript} -Wl,-Map=$<TARGET_FILE_DIR:${target}>/${target}.map
                       -Wl,--print-memory-usage)
-  target_link_libraries(${target} PRIVATE tse_hal_stm32f4 m)
+  target_link_libraries(${target} PRIVATE tse_hal_stm32f4 tse_board_desc_${ARG_BOARD} m)
   if(ARG_SEMIHOSTING)
     target_link_libraries(${target} PRIVATE tse_semihost)
     target_link_options(${target} PRIVATE --specs=nosys.specs)
@@ -53,7 +59,7 @@ function(tse_stack_report target)
     COMMAND ${TSE_PYTHON} ${PROJECT_SOURCE_DIR}/cmake/stack_report.py --quiet
             --map $<TARGET_FILE_DIR:${target}>/${target}.map --elf $<TARGET_FILE:${target}>
             --build-dir ${PROJECT_BINARY_DIR} --link-dir ${CMAKE_CURRENT_BINARY_DIR}
-            --ldscript ${TSE_BOARD_LDSCRIPT} --source-root ${PROJECT_SOURCE_DIR}
+            --ldscript $<TARGET_PROPERTY:${target},TSE_LDSCRIPT> --source-root ${PROJECT_SOURCE_DIR}
             --prio-header ${PROJECT_SOURCE_DIR}/hal/stm32f4/include/hal_stm32f4/pinmap.h
     COMMENT "Worst-case stack of ${target}")
 endfunction()

@@ -9,12 +9,16 @@
 #   --rig      the rig: text requests and answers (docs/emulator.md)
 #   --flash    the flash's backing file (1 MiB; created erased when missing): what the image
 #              saves (the parameter log, sectors 10 and 11) is there the next time
-#   --console  where USART1 (PA9, the image's boot line) goes (default: stdout)
+#   --console  where the image's boot line (its board's USART) goes (default: stdout)
 #   --bitrate  the bus's bit rate (default 500000): the controller hears and is heard only
 #              when its own timing gives this rate
-#   --hse-hz   the board's crystal (default 8000000; 0: no crystal)
+#   --hse-hz   the board's crystal (default: the image's board's, else 8000000; 0: no crystal)
 #   --icount   QEMU's -icount (default shift=3,align=off,sleep=on: 8 ns an instruction, about a
 #              168 MHz Cortex-M4's speed; "off": the host's clock)
+# The rig is wired to the pins of the board the image is built for, read from its .tse_board
+# section (emu/board_props.py; an image without one gets the generic board's), and an image linked
+# behind a bootloader (mks_monster8 at 0x0800C000) starts from its own vector table, as that
+# bootloader's jump would start it.
 # The emulator is the binary emu/build.sh built (TSE_EMU_QEMU overrides); it exits with the
 # image's QEMU (kill it to stop: SIGTERM ends it cleanly).
 set -euo pipefail
@@ -23,7 +27,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 usage() { sed -n '2,19p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; }
 die() { echo "emu/run.sh: $*" >&2; exit 2; }
 
-elf= can= rig= flash= console= bitrate=500000 hse=8000000 icount=shift=3,align=off,sleep=on
+elf= can= rig= flash= console= bitrate=500000 hse= icount=shift=3,align=off,sleep=on
 extra=()
 while [ $# -gt 0 ]; do
   case $1 in
@@ -44,7 +48,19 @@ done
 [ -n "$elf" ] && [ -n "$can" ] && [ -n "$rig" ] && [ -n "$flash" ] || { usage >&2; die "--elf, --can, --rig and --flash are required"; }
 [ -f "$elf" ] || die "no image '$elf'"
 [[ $bitrate =~ ^[1-9][0-9]*$ ]] || die "--bitrate '$bitrate' is not a positive number of bit/s"
-[[ $hse =~ ^[0-9]+$ ]] || die "--hse-hz '$hse' is not a number of Hz"
+[ -z "$hse" ] || [[ $hse =~ ^[0-9]+$ ]] || die "--hse-hz '$hse' is not a number of Hz"
+
+# The image's board: its pins for the machine, its crystal, its ENABLE level for the rig.
+board_machine= board_hse=8000000 enable_low=off
+props=$(python3 "$here/board_props.py" "$elf") || die "cannot read the board of '$elf'"
+while IFS='=' read -r key value; do
+  case $key in
+    hse) board_hse=$value ;;
+    machine) board_machine=$value ;;
+    enable_active_low) enable_low=$value ;;
+  esac
+done <<<"$props"
+[ -n "$hse" ] || hse=$board_hse
 
 qemu=${TSE_EMU_QEMU:-}
 if [ -z "$qemu" ]; then
@@ -57,10 +73,11 @@ for sock in "$can" "$rig"; do
   [ -e "$sock" ] && die "'$sock' exists and is not a socket"
 done
 
-args=(-M "tse-f407,can-chardev=can0,bitrate=$bitrate" -kernel "$elf" -display none -monitor none -nodefaults
+args=(-M "tse-f407,can-chardev=can0,bitrate=$bitrate$board_machine" -kernel "$elf" -display none -monitor none -nodefaults
       -chardev "socket,id=can0,path=$can,server=on,wait=off"
       -chardev "socket,id=rig0,path=$rig,server=on,wait=off"
       -global tse-rig.chardev=rig0
+      -global "tse-rig.enable-active-low=$enable_low"
       -global "stm32f4-rcc.hse-hz=$hse"
       -global "stm32f4-flash.file=$flash")
 if [ -n "$console" ]; then

@@ -102,6 +102,8 @@ for e in host + board:
     incs += [a[i + 1] for i, x in enumerate(a[:-1]) if x in ('-I', '-isystem')]
     incs = [os.path.normpath(os.path.join(e['directory'], x)) for x in incs]
     todo = [os.path.normpath(os.path.join(e['directory'], e['file']))]
+    # A board description comes in through a macro (src/board_desc.c: #include TSE_BOARD_HEADER).
+    todo += [x.split('=', 1)[1].strip('"\\') for x in a if x.startswith('-DTSE_BOARD_HEADER=')]
     seen = set()
     while todo:
         p = todo.pop()

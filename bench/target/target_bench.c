@@ -14,6 +14,8 @@
 #include "fw/move.h"
 #include "fw/runtime.h"
 #include "fw/stepgen.h"
+#include "hal_stm32f4/board_io.h"
+#include "hal_stm32f4/regs_tim.h"
 #include "hal_stm32f4/semihost.h"
 #include "tse/enclose.h"
 #include "tse/fk.h"
@@ -131,7 +133,21 @@ static void bench_kinematics(void)
     report("enclose_float", samples, enc, 0);
 }
 
-static void bench_stepgen(void)
+/* One step interrupt as fw_step_tick makes it: the step generator, then, with outputs (h not
+ * NULL), DIR where it changed and the STEP pulse, as the board's stepout.c writes them. */
+static stepgen_output step_once(stepgen *sg, const hal_stepper *h)
+{
+    const stepgen_output o = stepgen_tick(sg);
+    if (h) {
+        if (o.dir_changed)
+            h->set_dir(h->ctx, o.forward_mask);
+        if (o.step_mask)
+            h->pulse(h->ctx, o.step_mask);
+    }
+    return o;
+}
+
+static void step_ticks(const hal_stepper *h, const char *name, const char *name_max)
 {
     /* 200 kHz step interrupts over 1 kHz segments; every axis moves 190 steps a segment
      * (190 kHz, the prototype's top speed), alternating directions between axes. */
@@ -149,15 +165,45 @@ static void bench_stepgen(void)
         for (int t = 0; t < 200; ++t) {
             stepgen_output o;
             uint32_t n;
-            MEASURE(n, o = stepgen_tick(&sg));
+            MEASURE(n, o = step_once(&sg, h));
             if (t == 0)
                 first[n_first++] = n;
             else if (o.step_mask == 0x3Fu && n_all < MAX_SAMPLES)
                 samples[n_all++] = n;
         }
     }
-    report("step_tick_6axes", samples, n_all, 0);
-    report("step_tick_6axes_max", first, n_first, 1);
+    report(name, samples, n_all, 0);
+    report(name_max, first, n_first, 1);
+}
+
+/* The board's outputs on description d, TIM4's interrupt (the pulse's end) off: its instructions
+ * would land in whichever sample it interrupts. */
+static hal_stepper outputs_on(const board_desc *d)
+{
+    const hal_stepper h = board_stepper_hal_for(d, 84000000u, -1);
+    TSE_TIM4->DIER = 0;
+    return h;
+}
+
+static void bench_stepgen(void)
+{
+    step_ticks(NULL, "step_tick_6axes", "step_tick_6axes_max");
+    /* generic_f405: STEP1..6 on PC0..PC5, DIR on PC6..PC11: one BSRR write each. */
+    const hal_stepper fast = outputs_on(&tse_board_desc);
+    step_ticks(&fast, "step_tick_6axes_fast", "step_tick_6axes_fast_max");
+    /* The same with mks_monster8's STEP and DIR pins (hal/stm32f4/boards/mks_monster8.h), on four
+     * ports: a write per slide. */
+    static board_desc scattered;
+    scattered = tse_board_desc;
+    static const uint8_t step[6] = {BOARD_PIN(C, 14), BOARD_PIN(E, 5), BOARD_PIN(E, 1),
+                                    BOARD_PIN(B, 5),  BOARD_PIN(D, 6), BOARD_PIN(D, 2)};
+    static const uint8_t dir[6] = {BOARD_PIN(C, 13), BOARD_PIN(E, 4), BOARD_PIN(E, 0),
+                                   BOARD_PIN(B, 4),  BOARD_PIN(D, 5), BOARD_PIN(D, 1)};
+    memcpy(scattered.step, step, sizeof step);
+    memcpy(scattered.dir, dir, sizeof dir);
+    const hal_stepper per_slide = outputs_on(&scattered);
+    step_ticks(&per_slide, "step_tick_6axes_per_slide", "step_tick_6axes_per_slide_max");
+    outputs_on(&tse_board_desc);
 }
 
 static uint32_t segments_of_running(void)

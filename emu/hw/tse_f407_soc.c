@@ -8,9 +8,11 @@
  * RAM keeps its contents over a system reset (watchdog, software, NRST) and is cleared by a
  * power cycle (the "power-cycle" input, which the rig's `reset` pulses).
  *
- * Peripherals: our RCC, PWR, FLASH, GPIOA..E, SYSCFG, EXTI, TIM2..5, TIM11 (its channel 1 on
- * HSE_RTC: the image measures its crystal with it), IWDG and bxCAN1; QEMU's
- * stm32f2xx USART1 (the boot line: serial 0).  The others are QEMU's "unimplemented devices"
+ * Peripherals: our RCC, PWR, FLASH, GPIOA..G, SYSCFG, EXTI, TIM2..5, TIM11 (its channel 1 on
+ * HSE_RTC: the image measures its crystal with it), IWDG and bxCAN1 (on the pins can-rx-pin,
+ * can-tx-pin: PB8/PB9 by default); QEMU's stm32f2xx USART as the boot line's USART (boot-usart:
+ * 1, 2, 3 or 6; serial 0).  The core starts from the vector table at app-addr (0x08000000, or
+ * where a board's bootloader would jump: the flash below it is left as the flash file has it).  The others are QEMU's "unimplemented devices"
  * (read 0, writes ignored, logged with -d unimp).  A peripheral whose RCC enable bit is clear
  * reads 0 and ignores writes (its registers are switched off; a guest error is logged).
  *
@@ -40,11 +42,24 @@
 
 #define IRQ_FLASH 4
 #define IRQ_CAN1_TX 19
-#define IRQ_USART1 37
 #define IRQ_TIM11 26 /* TIM1_TRG_COM_TIM11 */
 #define TIM11_ADDR 0x40014800
 static const hwaddr gpio_addr[TSE_F407_NUM_GPIO] = {
-    0x40020000, 0x40020400, 0x40020800, 0x40020C00, 0x40021000,
+    0x40020000, 0x40020400, 0x40020800, 0x40020C00, 0x40021000, 0x40021400, 0x40021800,
+};
+/* The boot line's USART (RM0090 table 1 and 61): address, clock enable (APB1 or APB2 and bit),
+ * interrupt. */
+static const struct {
+    uint8_t n;
+    hwaddr addr;
+    const char *group;
+    int bit, irq;
+    const char *name;
+} usarts[] = {
+    {1, 0x40011000, RCC_GPIO_APB2EN, 4, 37, "USART1"},
+    {2, 0x40004400, RCC_GPIO_APB1EN, 17, 38, "USART2"},
+    {3, 0x40004800, RCC_GPIO_APB1EN, 18, 39, "USART3"},
+    {6, 0x40011400, RCC_GPIO_APB2EN, 5, 71, "USART6"},
 };
 static const hwaddr tim_addr[4] = { 0x40000000, 0x40000400, 0x40000800, 0x40000C00 };
 static const int tim_irq[4] = { 28, 29, 30, 50 };
@@ -204,6 +219,11 @@ static bool make_core(TseF407SocState *s, Error **errp)
     qdev_prop_set_uint32(armv7m, "num-irq", 82);
     qdev_prop_set_string(armv7m, "cpu-type", s->cpu_type);
     qdev_prop_set_bit(armv7m, "enable-bitband", true);
+    /* An image linked behind a bootloader (mks_monster8: 0x0800C000) starts as that bootloader's
+     * jump starts it: SP and PC from its own vector table, VTOR there (a core without the
+     * Security Extension takes the non-secure reset VTOR). */
+    qdev_prop_set_uint32(armv7m, "init-svtor", s->app_addr);
+    qdev_prop_set_uint32(armv7m, "init-nsvtor", s->app_addr);
     qdev_connect_clock_in(armv7m, "cpuclk", hclk);
     qdev_connect_clock_in(armv7m, "refclk", s->refclk);
     object_property_set_link(OBJECT(&s->armv7m), "memory", OBJECT(get_system_memory()), &error_abort);
@@ -242,7 +262,8 @@ static bool make_peripherals(TseF407SocState *s, Error **errp)
         qdev_connect_gpio_out(s->syscfg, i, qdev_get_gpio_in_named(s->exti, EXTI_IN_LINE, i));
     }
 
-    static const char *const port_name[TSE_F407_NUM_GPIO] = {"GPIOA", "GPIOB", "GPIOC", "GPIOD", "GPIOE"};
+    static const char *const port_name[TSE_F407_NUM_GPIO] = {"GPIOA", "GPIOB", "GPIOC", "GPIOD", "GPIOE",
+                                                              "GPIOF", "GPIOG"};
     for (int p = 0; p < TSE_F407_NUM_GPIO; ++p) {
         s->gpio[p] = qdev_new(TYPE_STM32F4_GPIO);
         object_property_add_child(OBJECT(s), port_name[p], OBJECT(s->gpio[p]));
@@ -303,22 +324,41 @@ static bool make_peripherals(TseF407SocState *s, Error **errp)
     for (int i = 0; i < 4; ++i) {
         sysbus_connect_irq(SYS_BUS_DEVICE(s->can1), i, nvic(s, IRQ_CAN1_TX + i));
     }
-    qdev_connect_gpio_out_named(s->gpio[1], GPIO_OUT_AF, 8, qdev_get_gpio_in_named(s->can1, BXCAN_IN_RX_AF, 0));
-    qdev_connect_gpio_out_named(s->gpio[1], GPIO_OUT_AF, 9, qdev_get_gpio_in_named(s->can1, BXCAN_IN_TX_AF, 0));
+    const uint8_t can_pin[2] = {s->can_rx_pin, s->can_tx_pin};
+    for (int i = 0; i < 2; ++i) {
+        if (can_pin[i] / 16 >= TSE_F407_NUM_GPIO) {
+            error_setg(errp, "tse-f407: CAN pin %u is not on ports A..G", (unsigned)can_pin[i]);
+            return false;
+        }
+    }
+    qdev_connect_gpio_out_named(s->gpio[s->can_rx_pin / 16], GPIO_OUT_AF, s->can_rx_pin % 16,
+                                qdev_get_gpio_in_named(s->can1, BXCAN_IN_RX_AF, 0));
+    qdev_connect_gpio_out_named(s->gpio[s->can_tx_pin / 16], GPIO_OUT_AF, s->can_tx_pin % 16,
+                                qdev_get_gpio_in_named(s->can1, BXCAN_IN_TX_AF, 0));
 
+    int u = -1;
+    for (int i = 0; i < (int)ARRAY_SIZE(usarts); ++i) {
+        if (usarts[i].n == s->boot_usart) {
+            u = i;
+        }
+    }
+    if (u < 0) {
+        error_setg(errp, "tse-f407: boot-usart %u: not 1, 2, 3 or 6", (unsigned)s->boot_usart);
+        return false;
+    }
     s->usart1 = qdev_new(TYPE_STM32F2XX_USART);
-    object_property_add_child(OBJECT(s), "USART1", OBJECT(s->usart1));
+    object_property_add_child(OBJECT(s), usarts[u].name, OBJECT(s->usart1));
     qdev_prop_set_chr(s->usart1, "chardev", serial_hd(0));
     if (!sysbus_realize_and_unref(SYS_BUS_DEVICE(s->usart1), errp)) {
         return false;
     }
-    map_gated(s, gate++, "USART1", s->usart1, 0x40011000, RCC_GPIO_APB2EN, 4);
-    sysbus_connect_irq(SYS_BUS_DEVICE(s->usart1), 0, nvic(s, IRQ_USART1));
+    map_gated(s, gate++, usarts[u].name, s->usart1, usarts[u].addr, usarts[u].group, usarts[u].bit);
+    sysbus_connect_irq(SYS_BUS_DEVICE(s->usart1), 0, nvic(s, usarts[u].irq));
     assert(gate <= TSE_F407_NUM_GATES);
     return true;
 }
 
-static void make_unimplemented(void)
+static void make_unimplemented(TseF407SocState *s)
 {
     static const struct { const char *name; hwaddr addr, size; } u[] = {
         {"TIM6", 0x40001000, 0x400}, {"TIM7", 0x40001400, 0x400}, {"TIM12", 0x40001800, 0x400},
@@ -330,14 +370,16 @@ static void make_unimplemented(void)
         {"CAN2", 0x40006800, 0x400}, {"DAC", 0x40007400, 0x400}, {"TIM1", 0x40010000, 0x400},
         {"TIM8", 0x40010400, 0x400}, {"USART6", 0x40011400, 0x400}, {"ADC", 0x40012000, 0x400},
         {"SDIO", 0x40012C00, 0x400}, {"SPI1", 0x40013000, 0x400}, {"TIM9", 0x40014000, 0x400},
-        {"TIM10", 0x40014400, 0x400}, {"GPIOF", 0x40021400, 0x400},
-        {"GPIOG", 0x40021800, 0x400}, {"GPIOH", 0x40021C00, 0x400}, {"GPIOI", 0x40022000, 0x400},
+        {"TIM10", 0x40014400, 0x400},
+        {"GPIOH", 0x40021C00, 0x400}, {"GPIOI", 0x40022000, 0x400},
         {"CRC", 0x40023000, 0x400}, {"DMA1", 0x40026000, 0x400}, {"DMA2", 0x40026400, 0x400},
         {"ETH", 0x40028000, 0x1400}, {"OTG_HS", 0x40040000, 0x40000}, {"OTG_FS", 0x50000000, 0x40000},
         {"DCMI", 0x50050000, 0x400}, {"RNG", 0x50060800, 0x400}, {"FSMC", 0xA0000000, 0x1000},
     };
     for (size_t i = 0; i < ARRAY_SIZE(u); ++i) {
-        create_unimplemented_device(u[i].name, u[i].addr, u[i].size);
+        if (strcmp(u[i].name, object_get_canonical_path_component(OBJECT(s->usart1))) != 0) {
+            create_unimplemented_device(u[i].name, u[i].addr, u[i].size); /* not the boot line's */
+        }
     }
 }
 
@@ -351,7 +393,7 @@ static void soc_realize(DeviceState *dev, Error **errp)
     if (!make_memory(s, errp) || !make_core(s, errp) || !make_peripherals(s, errp)) {
         return;
     }
-    make_unimplemented();
+    make_unimplemented(s);
 }
 
 static void soc_init(Object *obj)
@@ -369,6 +411,10 @@ static Property soc_properties[] = {
     DEFINE_PROP_LINK("canbus", TseF407SocState, canbus, TYPE_CAN_BUS, CanBusState *),
     DEFINE_PROP_UINT32("bitrate", TseF407SocState, bitrate, 500000),
     DEFINE_PROP_BOOL("wfi-nop", TseF407SocState, wfi_nop, true),
+    DEFINE_PROP_UINT8("can-rx-pin", TseF407SocState, can_rx_pin, 1 * 16 + 8),
+    DEFINE_PROP_UINT8("can-tx-pin", TseF407SocState, can_tx_pin, 1 * 16 + 9),
+    DEFINE_PROP_UINT8("boot-usart", TseF407SocState, boot_usart, 1),
+    DEFINE_PROP_UINT32("app-addr", TseF407SocState, app_addr, 0x08000000),
     DEFINE_PROP_END_OF_LIST(),
 };
 

@@ -16,8 +16,8 @@
 
 OBJECT_DECLARE_SIMPLE_TYPE(TseF407SocState, TSE_F407_SOC)
 
-#define TSE_F407_NUM_GPIO 5  /* A..E */
-#define TSE_F407_NUM_GATES 16
+#define TSE_F407_NUM_GPIO 7  /* A..G: the LQFP144 part's ports (olimex_e407 uses F) */
+#define TSE_F407_NUM_GATES 20
 
 struct TseF407SocState {
     SysBusDevice parent_obj;
@@ -25,7 +25,7 @@ struct TseF407SocState {
     ARMv7MState armv7m;
     MemoryRegion sram, ccm, bkpsram, flash_alias;
     Clock *refclk;
-    DeviceState *rcc, *pwr, *flash, *syscfg, *exti, *iwdg, *can1, *usart1;
+    DeviceState *rcc, *pwr, *flash, *syscfg, *exti, *iwdg, *can1, *usart1; /* usart1: the boot line's */
     DeviceState *gpio[TSE_F407_NUM_GPIO];
     DeviceState *tim[4]; /* TIM2..TIM5 */
     DeviceState *tim11;
@@ -39,6 +39,9 @@ struct TseF407SocState {
     CanBusState *canbus;
     uint32_t bitrate;
     bool wfi_nop;
+    uint8_t can_rx_pin, can_tx_pin; /* CAN1's pins: port * 16 + pin (default PB8, PB9) */
+    uint8_t boot_usart;             /* the boot line's USART: 1, 2, 3 or 6 (on serial 0) */
+    uint32_t app_addr;              /* where the core takes its vector table at reset */
 };
 
 /* Re-asserts the core's interrupt request after QEMU's core reset cleared it (wfi-nop): the

@@ -3,7 +3,7 @@
  * board as docs/board.md says, and a text interface to read and drive them (the "chardev"
  * property; docs/emulator.md describes the protocol).
  *
- * The drivers: a slide moves one step on each STEP pulse while ENABLE is high, towards +s when
+ * The drivers: a slide moves one step on each STEP pulse while ENABLE is high (low with the property "enable-active-low"), towards +s when
  * DIR is high.  Like a real driver it misses a pulse high for less than step-pulse-ns (default
  * 2500: the DM542's minimum, docs/board.md), and takes a step whose rising edge comes less than
  * dir-setup-ns (5000) after a change of DIR in the direction DIR had before (property "miss-violations", on by default; off, such
@@ -100,6 +100,7 @@ struct TseRigState {
     char *initial_m, *switch_m;
     uint32_t step_pulse_ns, dir_setup_ns;
     bool miss_violations;
+    bool enable_active_low;
 };
 
 static int64_t now_ns(void)
@@ -198,9 +199,12 @@ static void dir_in(void *opaque, int k, int level)
     }
 }
 
+/* The drivers' enable: high enables them, or low with enable-active-low (a stepstick's EN, as on
+ * the mks_monster8 board). */
 static void enable_in(void *opaque, int n, int level)
 {
-    TSE_RIG(opaque)->enable = level != 0;
+    TseRigState *s = TSE_RIG(opaque);
+    s->enable = s->enable_active_low ? level == 0 : level != 0;
 }
 
 /* bxCAN took a frame: level 1 + its identifier (then 0). */
@@ -467,6 +471,7 @@ static Property rig_properties[] = {
     DEFINE_PROP_UINT32("step-pulse-ns", TseRigState, step_pulse_ns, 2500),
     DEFINE_PROP_UINT32("dir-setup-ns", TseRigState, dir_setup_ns, 5000),
     DEFINE_PROP_BOOL("miss-violations", TseRigState, miss_violations, true),
+    DEFINE_PROP_BOOL("enable-active-low", TseRigState, enable_active_low, false),
     DEFINE_PROP_UINT32("mark-id", TseRigState, mark_id, 0x0D1),
     DEFINE_PROP_END_OF_LIST(),
 };

@@ -256,6 +256,23 @@ class BoardEmu(unittest.TestCase):
         timing."""
         em = self.start()
         c = self.controller(em)
+        self.enable_home_move(em, c)
+
+    def test_board(self):
+        """Any board's image (tse-fw-NAME.elf: emu/run.sh wires the rig to the pins its .tse_board
+        section names, takes its crystal, its ENABLE level and where it is linked): it boots to
+        disabled with no fault and its boot line on its own USART, then ENABLE, HOME and a move
+        drive the rig as on the generic board."""
+        em = self.start()
+        c = self.controller(em)
+        st = c.status()
+        self.assertEqual((st.state, st.fault), ("disabled", "none"), st)
+        lines = self.wait_virtual(em, 1.0, lambda e: self.boot_lines(e), "boot line")
+        self.assertEqual(lines, [f"tse-fw node {NODE}: boot faults 0x00"])
+        self.enable_home_move(em, c)
+
+    def enable_home_move(self, em, c):
+        """ENABLE, HOME and a 5 s move on a booted board (test_enable_home, test_board)."""
         start = em.slides()
         self.assertEqual(start, [0.25] * 6)
         lowest = list(start)

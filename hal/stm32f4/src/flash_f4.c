@@ -1,7 +1,7 @@
 /* The F405/407 flash controller as flash_ops (hal_stm32f4/flash_f4.h). */
 #include "hal_stm32f4/flash_f4.h"
 
-#include "hal_stm32f4/param_log.h"
+#include "hal_stm32f4/board_desc.h"
 #include "hal_stm32f4/regs_dwt.h"
 #include "hal_stm32f4/regs_flash.h"
 #include "hal_stm32f4/regs_misc.h"
@@ -16,7 +16,6 @@
 #define ERASE_BOUND_MS 4000u
 #define PROGRAM_BOUND_US 1000u
 
-#define REGION_BYTES (2u * PARAM_LOG_SECTOR_BYTES)
 #define FASTEST_HZ 168000000u
 #define ERASE_CYCLES (FASTEST_HZ / 1000u * ERASE_BOUND_MS)
 #define PROGRAM_CYCLES (FASTEST_HZ / 1000000u * PROGRAM_BOUND_US)
@@ -27,12 +26,17 @@ static struct {
     uint32_t last_error;
 } state;
 
-/* True by param_log.h's definitions, which the analyzer sees as a redundant expression: it
- * holds any later edit of them to contiguous sectors.
- * NOLINTNEXTLINE(misc-redundant-expression) */
-_Static_assert(PARAM_LOG_SECTOR1_ADDR == PARAM_LOG_SECTOR0_ADDR + PARAM_LOG_SECTOR_BYTES,
-               "the log's sectors are contiguous");
-_Static_assert(PARAM_LOG_SECTOR1_NUMBER == PARAM_LOG_SECTOR0_NUMBER + 1u, "sectors 10 and 11");
+/* The log's two sectors, the description's param_sector and the next (board_desc.h; two of the
+ * same size, above the image: the host checker, tests/boards, holds every description to it). */
+static uint32_t log_base(void)
+{
+    return board_sector_addr(tse_board_desc.param_sector);
+}
+
+static uint32_t log_sector_bytes(void)
+{
+    return board_sector_bytes(tse_board_desc.param_sector);
+}
 
 void flash_f4_feed_iwdg(void)
 {
@@ -144,25 +148,25 @@ static int f4_erase(void *ctx, uint32_t sector)
     if (sector > 1u)
         return FLASH_OPS_EARG;
     cycle_counter_on();
-    return erase_sector(PARAM_LOG_SECTOR0_NUMBER + sector);
+    return erase_sector(tse_board_desc.param_sector + sector);
 }
 
 static int f4_program(void *ctx, uint32_t offset, const uint32_t *words, uint32_t n)
 {
     (void)ctx;
-    if (offset % 4u != 0 || offset > REGION_BYTES || n > (REGION_BYTES - offset) / 4u)
+    const uint32_t region = 2u * log_sector_bytes();
+    if (offset % 4u != 0 || offset > region || n > (region - offset) / 4u)
         return FLASH_OPS_EARG;
     if (n == 0)
         return FLASH_OPS_OK;
     cycle_counter_on();
-    return program_words((volatile uint32_t *)(PARAM_LOG_FLASH_BASE + offset), words, n);
+    return program_words((volatile uint32_t *)(log_base() + offset), words, n);
 }
 
 flash_ops flash_f4_ops(void (*idle)(void))
 {
     state.idle = idle;
-    return (flash_ops){&state, (const uint32_t *)PARAM_LOG_FLASH_BASE, PARAM_LOG_SECTOR_BYTES,
-                       f4_erase, f4_program};
+    return (flash_ops){&state, (const uint32_t *)log_base(), log_sector_bytes(), f4_erase, f4_program};
 }
 
 uint32_t flash_f4_last_error(void)

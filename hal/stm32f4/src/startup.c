@@ -25,7 +25,13 @@ void SVC_Handler(void) WEAK_DEFAULT;
 void DebugMon_Handler(void) WEAK_DEFAULT;
 void PendSV_Handler(void) WEAK_DEFAULT;
 void SysTick_Handler(void) WEAK_DEFAULT;
+void EXTI0_IRQHandler(void) WEAK_DEFAULT;
+void EXTI1_IRQHandler(void) WEAK_DEFAULT;
+void EXTI2_IRQHandler(void) WEAK_DEFAULT;
+void EXTI3_IRQHandler(void) WEAK_DEFAULT;
+void EXTI4_IRQHandler(void) WEAK_DEFAULT;
 void EXTI9_5_IRQHandler(void) WEAK_DEFAULT;
+void EXTI15_10_IRQHandler(void) WEAK_DEFAULT;
 void CAN1_TX_IRQHandler(void) WEAK_DEFAULT;
 void CAN1_RX0_IRQHandler(void) WEAK_DEFAULT;
 void CAN1_RX1_IRQHandler(void) WEAK_DEFAULT;
@@ -57,12 +63,12 @@ __attribute__((section(".isr_vector"), used)) static const vector vectors[16 + I
     0, /* 13 */
     PendSV_Handler, /* 14 */
     SysTick_Handler, /* 15 */
-    D, D, D, D, D, D, D, D, /* IRQ 0.. */
-    D, D, D, D, D, D, D, D, /* IRQ 8.. */
+    D, D, D, D, D, D, EXTI0_IRQHandler, EXTI1_IRQHandler, /* IRQ 0.. */
+    EXTI2_IRQHandler, EXTI3_IRQHandler, EXTI4_IRQHandler, D, D, D, D, D, /* IRQ 8.. */
     D, D, D, CAN1_TX_IRQHandler, CAN1_RX0_IRQHandler, CAN1_RX1_IRQHandler, CAN1_SCE_IRQHandler, EXTI9_5_IRQHandler, /* IRQ 16.. */
     D, D, D, D, TIM2_IRQHandler, TIM3_IRQHandler, TIM4_IRQHandler, D, /* IRQ 24.. */
     D, D, D, D, D, D, D, D, /* IRQ 32.. */
-    D, D, D, D, D, D, D, D, /* IRQ 40.. */
+    EXTI15_10_IRQHandler, D, D, D, D, D, D, D, /* IRQ 40.. */
     D, D, TIM5_IRQHandler, D, D, D, D, D, /* IRQ 48.. */
     D, D, D, D, D, D, D, D, /* IRQ 56.. */
     D, D, D, D, D, D, D, D, /* IRQ 64.. */
@@ -105,6 +111,9 @@ __attribute__((noreturn)) void Reset_Handler(void)
 {
     /* The FPU first: any float instruction before this would fault. */
     TSE_CPACR |= CPACR_CP10_CP11_FULL;
+    /* Our own vector table, wherever the board links the image (board_desc.h: behind a
+     * bootloader it is not at 0x08000000, and not every bootloader sets VTOR before it jumps). */
+    TSE_SCB->VTOR = (uint32_t)(uintptr_t)vectors;
     __asm__ volatile("dsb\n\tisb" ::: "memory");
     copy_words(&_sdata, &_sidata, &_edata);
     zero_words(&_sbss, &_ebss);

@@ -1,6 +1,6 @@
 /* The board's I/O as the firmware's HAL sees it (hal/stepper.h, hal/inputs.h, hal/clock.h), and
  * the two timer interrupts that run the controller's step and control contexts (fw/runtime.h), on
- * the pins and timers of pinmap.h. */
+ * pins of the board's description (board_desc.h) and the timers of pinmap.h. */
 #ifndef TSE_BOARD_IO_H
 #define TSE_BOARD_IO_H
 
@@ -10,19 +10,30 @@
 #include "hal/clock.h"
 #include "hal/inputs.h"
 #include "hal/stepper.h"
+#include "hal_stm32f4/board_desc.h"
 
-/* Configures every pin of pinmap.h: outputs low (drivers disabled), inputs with pull-ups, the
- * CAN pins on their alternate function.  Call once, after the peripheral clocks are on. */
+/* Configures every pin of the description: STEP and DIR low, the drivers disabled (at the
+ * description's ENABLE level), the LED off, inputs with pull-ups, the CAN pins on their alternate
+ * function.  Call once, after the peripheral clocks are on. */
 void board_pins_init(void);
 
-/* STEP/DIR/ENABLE.  timer_hz: the clock of TIM4, which ends each STEP pulse (a one-shot). */
-hal_stepper board_stepper_hal(uint32_t timer_hz);
+/* The status LED on or off (nothing where the board has none). */
+void board_led_set(bool on);
+
+/* STEP/DIR/ENABLE.  timer_hz: the clock of TIM4, which ends each STEP pulse (a one-shot).
+ * enable_active_high: 1 high enables the drivers, 0 low does, < 0 the description's level;
+ * board_outputs_safe (fault.h) disables them at the same level from then on (before, at the
+ * description's). */
+hal_stepper board_stepper_hal(uint32_t timer_hz, int enable_active_high);
+
+/* The same on the pins of another description (the benchmark's per-slide path). */
+hal_stepper board_stepper_hal_for(const board_desc *d, uint32_t timer_hz, int enable_active_high);
 
 /* Limit switches (pressed, or a broken wire, reads as pressed) and the e-stop input. */
 hal_inputs board_inputs_hal(void);
 
-/* The e-stop input on EXTI8: on a rising edge (the NC chain opened) `on_estop(arg)` runs at
- * PRIO_ESTOP, i.e. without waiting for the main loop. */
+/* The e-stop input on its EXTI line (the pin's number): on a rising edge (the NC chain opened)
+ * `on_estop(arg)` runs at PRIO_ESTOP, i.e. without waiting for the main loop. */
 void board_estop_irq_init(void (*on_estop)(void *arg), void *arg);
 
 /* Microseconds from TIM5, a free-running 1 MHz counter extended to 64 bits.  now_us may be called

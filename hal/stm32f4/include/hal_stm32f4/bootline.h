@@ -1,5 +1,5 @@
-/* The boot line: one line of text when the image starts, on USART1 TX (PA9, 115200 8N1,
- * pinmap.h), saying what the start-up found.  For a 3.3 V serial adapter on the bench, and for
+/* The boot line: one line of text when the image starts, on the board description's USART TX
+ * (board_desc.h; USART1 on PA9 on generic_f405; 115200 8N1), saying what the start-up found.  For a 3.3 V serial adapter on the bench, and for
  * an emulator's console (QEMU's netduinoplus2 and tse-f407 model USART1: -serial).  Not
  * semihosting, which stops a board that has no debugger attached.
  *
@@ -14,8 +14,9 @@
 #define BOOTLINE_BAUD 115200u
 #define BOOTLINE_WAIT_POLLS 20000u
 
-/* Clocks USART1, puts PA9 on it, and sets 115200 bit/s from pclk2_hz (the APB2 clock). */
-void board_bootline_open(uint32_t pclk2_hz);
+/* Clocks the description's USART (1, 2, 3 or 6), puts its TX pin on it, and sets 115200 bit/s
+ * from its bus clock: pclk1_hz (APB1: USART2, USART3) or pclk2_hz (APB2: USART1, USART6). */
+void board_bootline_open(uint32_t pclk1_hz, uint32_t pclk2_hz);
 
 void board_bootline_puts(const char *s);
 void board_bootline_hex(uint32_t v); /* "0x" and at least two hexadecimal digits */

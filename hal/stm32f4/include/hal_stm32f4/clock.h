@@ -1,4 +1,4 @@
-/* The clock tree: 168 MHz SYSCLK from the 8 MHz crystal through the PLL, AHB 168 MHz, APB1
+/* The clock tree: 168 MHz SYSCLK from the board's crystal (board_desc.h) through the PLL, AHB 168 MHz, APB1
  * 42 MHz (timers 84 MHz), APB2 84 MHz, flash at 5 wait states with the ART accelerator
  * (prefetch, instruction and data caches), regulator scale 1.
  *

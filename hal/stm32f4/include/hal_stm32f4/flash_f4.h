@@ -37,7 +37,7 @@
 
 #include "hal_stm32f4/flash_ops.h"
 
-/* The ops over sectors 10 and 11, contents read at PARAM_LOG_FLASH_BASE.  idle (may be NULL)
+/* The ops over the description's two log sectors, contents read where they lie.  idle (may be NULL)
  * is called on every poll of a wait and must live in .ramfunc. */
 flash_ops flash_f4_ops(void (*idle)(void));
 

@@ -45,14 +45,10 @@
 #include "hal/storage.h"
 #include "hal_stm32f4/flash_ops.h"
 
-/* The log's two sectors on the STM32F405/407 with 1 MiB of flash (RM0090 table 5): sectors 10
- * and 11, the last two.  The linker script keeps the image below PARAM_LOG_FLASH_BASE. */
-#define PARAM_LOG_FLASH_BASE 0x080C0000u
+/* The size of the log's sectors on every board so far: two 128 KiB sectors (RM0090 table 5),
+ * which ones the board description says (board_desc.h: 10 and 11 on a 1 MiB part, 6 and 7 on
+ * 512 KiB); the linker script keeps the image below them. */
 #define PARAM_LOG_SECTOR_BYTES 0x20000u /* 128 KiB */
-#define PARAM_LOG_SECTOR0_ADDR PARAM_LOG_FLASH_BASE
-#define PARAM_LOG_SECTOR1_ADDR (PARAM_LOG_FLASH_BASE + PARAM_LOG_SECTOR_BYTES)
-#define PARAM_LOG_SECTOR0_NUMBER 10u /* FLASH_CR.SNB of sector 0 of the log */
-#define PARAM_LOG_SECTOR1_NUMBER 11u
 
 #define PARAM_LOG_MAX_PAYLOAD 256u
 #define PARAM_LOG_MAGIC 0x4C505354u /* "TSPL" in flash order */

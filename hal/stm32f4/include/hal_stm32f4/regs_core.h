@@ -107,7 +107,9 @@ static inline void tse_basepri_restore(uint32_t saved)
 
 /* Interrupt numbers of the STM32F405/407 (RM0090 table 61) that the board uses. */
 enum {
+    IRQ_EXTI0 = 6, /* EXTI1..4: 7..10 */
     IRQ_EXTI9_5 = 23,
+    IRQ_EXTI15_10 = 40,
     IRQ_CAN1_TX = 19,
     IRQ_CAN1_RX0 = 20,
     IRQ_CAN1_RX1 = 21,

@@ -20,9 +20,8 @@ typedef struct {
 _Static_assert(offsetof(tse_gpio_regs, BSRR) == 0x18, "GPIO BSRR offset");
 _Static_assert(offsetof(tse_gpio_regs, AFR) == 0x20, "GPIO AFR offset");
 
-#define TSE_GPIOA ((tse_gpio_regs *)0x40020000u)
-#define TSE_GPIOB ((tse_gpio_regs *)0x40020400u)
-#define TSE_GPIOC ((tse_gpio_regs *)0x40020800u)
+/* Port 0 = A .. 8 = I, 1 KiB apart (RM0090 table 1). */
+#define TSE_GPIO(port) ((tse_gpio_regs *)(0x40020000u + 0x400u * (uint32_t)(port)))
 
 #define GPIO_MODE_INPUT 0u
 #define GPIO_MODE_OUTPUT 1u

@@ -70,7 +70,10 @@ _Static_assert(offsetof(tse_rcc_regs, CSR) == 0x74, "RCC CSR offset");
 #define RCC_APB1ENR_TIM5 (1u << 3)
 #define RCC_APB1ENR_CAN1 (1u << 25)
 #define RCC_APB1ENR_PWR (1u << 28)
+#define RCC_APB1ENR_USART2 (1u << 17)
+#define RCC_APB1ENR_USART3 (1u << 18)
 #define RCC_APB2ENR_USART1 (1u << 4)
+#define RCC_APB2ENR_USART6 (1u << 5)
 #define RCC_APB2ENR_SYSCFG (1u << 14)
 
 #define RCC_CSR_LSION (1u << 0)

@@ -1,4 +1,4 @@
-/* USART1 of the STM32F405/407 (RM0090 section 30.6), our own definitions: only what the boot
+/* The USARTs of the STM32F405/407 (RM0090 section 30.6), our own definitions: only what the boot
  * line uses. */
 #ifndef TSE_REGS_USART_H
 #define TSE_REGS_USART_H
@@ -18,7 +18,10 @@ typedef struct {
 
 _Static_assert(offsetof(tse_usart_regs, CR1) == 0x0C, "USART CR1 offset");
 
-#define TSE_USART1 ((tse_usart_regs *)0x40011000u)
+#define TSE_USART1 ((tse_usart_regs *)0x40011000u) /* APB2 */
+#define TSE_USART2 ((tse_usart_regs *)0x40004400u) /* APB1 */
+#define TSE_USART3 ((tse_usart_regs *)0x40004800u) /* APB1 */
+#define TSE_USART6 ((tse_usart_regs *)0x40011400u) /* APB2 */
 
 #define USART_SR_TC (1u << 6)
 #define USART_SR_TXE (1u << 7)

@@ -1,0 +1,8 @@
+/* Planted fault (not sector-aligned): generic_f405 with one thing wrong; board_check --planted app_not_sector_aligned must
+ * find it (tests/boards/CMakeLists.txt). */
+#include "../../../hal/stm32f4/boards/generic_f405.h"
+#undef BOARD_NAME
+#define BOARD_NAME "app_not_sector_aligned"
+#define BOARD_PLANTED_EXPECT "not sector-aligned"
+#undef BOARD_APP_ADDR
+#define BOARD_APP_ADDR 0x08001000u /* inside sector 0 */
