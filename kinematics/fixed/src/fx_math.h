@@ -1,0 +1,137 @@
+/* Integer arithmetic of the fixed-point kinematics (docs/kinematics.md, "The fixed-point build"):
+ * products through 64-bit intermediates, shifts that are never undefined, a square root and
+ * quotients, all in integers (a Cortex-M3 has a 32 x 32 -> 64 multiply, a 32 / 32 divide and a
+ * count of leading zeros; nothing here needs more).
+ *
+ * Every shift count goes through fx_shr / fx_shl, which take any count: a count of 64 or more
+ * gives 0 (or -1 for a negative value shifted right), never the undefined behaviour of C's
+ * operators (an earlier attempt shifted by 66 in a scaling helper). */
+#ifndef TSE_FX_MATH_H
+#define TSE_FX_MATH_H
+
+#include <stdint.h>
+
+/* x >> n, rounded toward minus infinity, for any n >= 0 (n <= 0 shifts left through fx_shl). */
+static inline int64_t fx_shr(int64_t x, int n)
+{
+    if (n <= 0)
+        return n == 0 ? x : (int64_t)((uint64_t)x << (-n > 63 ? 63 : -n));
+    if (n > 63)
+        return x < 0 ? -1 : 0;
+    /* Arithmetic shift of a negative value: implementation-defined in C11, written out instead. */
+    return x >= 0 ? (int64_t)((uint64_t)x >> n) : -(int64_t)(((uint64_t)(-(x + 1)) >> n)) - 1;
+}
+
+/* x << n for 0 <= n <= 63, through unsigned arithmetic (a negative x is not undefined); the
+ * caller knows the result fits. */
+static inline int64_t fx_shl(int64_t x, int n)
+{
+    if (n <= 0)
+        return fx_shr(x, -n);
+    if (n > 63)
+        return 0;
+    return (int64_t)((uint64_t)x << n);
+}
+
+/* Leading zeros of a 32- and a 64-bit value (32 and 64 for zero). */
+static inline int fx_clz32(uint32_t x)
+{
+    return x ? __builtin_clz(x) : 32;
+}
+
+static inline int fx_clz64(uint64_t x)
+{
+    return (x >> 32) ? fx_clz32((uint32_t)(x >> 32)) : 32 + fx_clz32((uint32_t)x);
+}
+
+static inline uint64_t fx_abs64(int64_t x)
+{
+    return x < 0 ? (uint64_t)0 - (uint64_t)x : (uint64_t)x;
+}
+
+/* Bits needed for |x| (0 for 0). */
+static inline int fx_bits64(int64_t x)
+{
+    return 64 - fx_clz64(fx_abs64(x));
+}
+
+/* (a * b) >> sh for 0 <= sh <= 32, rounded toward minus infinity, without a 96-bit product: the
+ * high word's part is exact, the low word's is a 32 x 32 -> 64 product.  The caller knows the
+ * result fits in 64 bits. */
+static inline int64_t fx_mul64x32(int64_t a, int32_t b, int sh)
+{
+    const int64_t hi = (int64_t)(int32_t)(uint32_t)((uint64_t)a >> 32) * b; /* a's signed top word */
+    const int64_t lo = (int64_t)(uint64_t)(uint32_t)a * b;                   /* unsigned low word */
+    return fx_shl(hi, 32 - sh) + fx_shr(lo, sh);
+}
+
+/* (a * b) >> sh of two 32-bit values, 0 <= sh <= 63. */
+static inline int64_t fx_mul32(int32_t a, int32_t b, int sh)
+{
+    return fx_shr((int64_t)a * b, sh);
+}
+
+/* Rounded to nearest: (a * b + 2^(sh-1)) >> sh, 1 <= sh <= 62. */
+static inline int32_t fx_mul32r(int32_t a, int32_t b, int sh)
+{
+    return (int32_t)fx_shr((int64_t)a * b + ((int64_t)1 << (sh - 1)), sh);
+}
+
+/* floor(sqrt(x)) of a 64-bit value (fx_math.c). */
+uint32_t fx_isqrt64(uint64_t x);
+
+/* round(num * 2^sh / den) for den != 0, 0 <= sh <= 62, with the quotient known to fit in 64 bits
+ * by the caller; both operands are first brought to at most 62 bits (the quotient keeps 30 or
+ * more significant bits).  Returns INT64_MAX or INT64_MIN when den is 0 or the quotient would
+ * not fit (fx_math.c). */
+int64_t fx_div(int64_t num, int64_t den, int sh);
+
+/* A product of many factors of known sign but widely varying size (the type-2 check's sixth
+ * powers of metres): m 2^e with |m| < 2^31 after every operation.  Integers only. */
+typedef struct {
+    int64_t m;
+    int e;
+} fx_scaled;
+
+static inline fx_scaled fx_scaled_of(int64_t v, int frac_bits)
+{
+    const int b = fx_bits64(v), k = b > 31 ? b - 31 : 0;
+    return (fx_scaled){fx_shr(v, k), k - frac_bits};
+}
+
+static inline fx_scaled fx_scaled_mul(fx_scaled x, fx_scaled y)
+{
+    return fx_scaled_of(x.m * y.m, -(x.e + y.e));
+}
+
+/* x - y, aligned to the larger exponent. */
+static inline fx_scaled fx_scaled_sub(fx_scaled x, fx_scaled y)
+{
+    const int e = x.e > y.e ? x.e : y.e;
+    return fx_scaled_of(fx_shr(x.m, e - x.e) - fx_shr(y.m, e - y.e), -e);
+}
+
+/* sqrt(x) for x.m >= 0. */
+static inline fx_scaled fx_scaled_sqrt(fx_scaled x)
+{
+    if (x.m <= 0)
+        return (fx_scaled){0, 0};
+    /* m up to 62 bits with an even exponent left: 31 bits of root. */
+    int k = 62 - fx_bits64(x.m);
+    if ((x.e - k) & 1)
+        --k;
+    return fx_scaled_of(fx_isqrt64((uint64_t)fx_shl(x.m, k)), -((x.e - k) / 2));
+}
+
+/* x / y in Q(frac_bits), saturated to 32 bits; y.m > 0. */
+static inline int32_t fx_scaled_div(fx_scaled x, fx_scaled y, int frac_bits)
+{
+    const int64_t q = fx_div(x.m, y.m, 30); /* Q30 of the mantissas' ratio */
+    const int64_t r = fx_shl(q, x.e - y.e + frac_bits - 30);
+    const int sh = x.e - y.e + frac_bits - 30;
+    if (sh > 0 && fx_bits64(q) + sh > 62)
+        return q > 0 ? INT32_MAX : -INT32_MAX;
+    return r > INT32_MAX ? INT32_MAX : r < -INT32_MAX ? -INT32_MAX : (int32_t)r;
+}
+
+#endif
