@@ -45,8 +45,8 @@ static int64_t reach_of(int32_t L, int32_t l0, int32_t c)
     const int64_t ratio = fx_div(2LL * TSE_FX_ONE, one_c, 30); /* 2 / (1 + c), Q30 */
     if (ratio > 64LL * TSE_FX_ONE)
         return -1;
-    const int64_t root = fx_isqrt64((uint64_t)ratio << 30); /* Q30 */
-    const int64_t reach = L + fx_shr(2LL * l0 * root, 30);
+    const int64_t root = fx_isqrt64((uint64_t)ratio << 18); /* Q24: ratio < 2^37, so 2^55 */
+    const int64_t reach = L + fx_shr(2LL * l0 * root, 24);
     if (reach > FX_S_BOX)
         return -1;
     return reach + (reach >> 16) + 16;

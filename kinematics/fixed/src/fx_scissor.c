@@ -304,7 +304,7 @@ static int quartic_candidates(const consts *k, int32_t lo, int32_t hi, int32_t *
  * Returns 0 when m is zero or they leave the format's room. */
 static int slides_of(const tse_fx_geometry *g, const consts *k, int32_t m20, int32_t *s_a, int32_t *s_b)
 {
-    const int64_t m = (int64_t)m20 << 4; /* Q24 */
+    const int64_t m = fx_shl(m20, 4); /* Q24 */
     if (m == 0)
         return 0;
     const int64_t delta = (int64_t)k->u * k->u - (int64_t)k->v * k->v;
