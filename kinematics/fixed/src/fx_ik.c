@@ -48,8 +48,15 @@ static int64_t len_by_unit(int64_t len, int32_t unit)
     return fx_mul64x32(len, unit, 30);
 }
 
+/* Q24 x Q30 -> Q24 of a length within int32 (every length of a solution: below 128 m). */
+static int32_t lu(int32_t len, int32_t unit)
+{
+    return (int32_t)fx_shr((int64_t)len * unit, 30);
+}
+
 /* The normal n_i = g1 x g2 of scissor i's two constraint gradients and the product of its two
- * rows' squared norms in dF/dp (ik.c, type2_normal, in the same form). */
+ * rows' squared norms in dF/dp (ik.c, type2_normal, in the same form).  Its slides, ball joint and
+ * gradients are all below 32 m, and so every row entry is (below 64 m: int32 in Q24). */
 static fx_scaled type2_normal(const tse_fx_geometry *g, const pose_frame *f, int i, const fx_local *loc,
                               int32_t s_a, int32_t s_b, int64_t n[3])
 {
@@ -57,24 +64,24 @@ static fx_scaled type2_normal(const tse_fx_geometry *g, const pose_frame *f, int
     const int32_t *rho = f->rho[i];
     static const int32_t SB[3] = {0, FX_HALF_SQRT3, -FX_HALF_SQRT3};
     const int32_t sb = SB[i];
-    const int64_t aa[2] = {len_by_unit(s_a, sf->a[0]), len_by_unit(s_a, sf->a[1])};
-    const int64_t g1[2] = {len_by_unit(s_b, sf->b[0]) - aa[0], len_by_unit(s_b, sf->b[1]) - aa[1]};
-    const int64_t g2[3] = {loc->d[0] - aa[0], loc->d[1] - aa[1], loc->d[2]};
+    const int32_t aa[2] = {lu(s_a, sf->a[0]), lu(s_a, sf->a[1])};
+    const int32_t g1[2] = {lu(s_b, sf->b[0]) - aa[0], lu(s_b, sf->b[1]) - aa[1]};
+    const int32_t g2[3] = {loc->d[0] - aa[0], loc->d[1] - aa[1], loc->d[2]};
     const int32_t h[3] = {mul30(f->cy, rho[2]), mul30(f->sy, rho[2]), -(mul30(f->sy, rho[1]) + mul30(f->cy, rho[0]))};
-    const int64_t r1 = len_by_unit(len_by_unit(g1[0], f->N[0]) + len_by_unit(g1[1], f->N[1]), sb);
-    const int64_t p1 = len_by_unit(g1[0], h[0]) + len_by_unit(g1[1], h[1]);
-    const int64_t y1 = len_by_unit(g1[1], rho[0]) - len_by_unit(g1[0], rho[1]);
-    const int64_t r2 =
-        len_by_unit(len_by_unit(g2[0], f->N[0]) + len_by_unit(g2[1], f->N[1]) + len_by_unit(g2[2], f->N[2]), sb);
-    const int64_t p2 = len_by_unit(g2[0], h[0]) + len_by_unit(g2[1], h[1]) + len_by_unit(g2[2], h[2]);
-    const int64_t y2 = len_by_unit(g2[1], rho[0]) - len_by_unit(g2[0], rho[1]);
-    /* Each below 2^30 in Q24 (64 m): the squares and their sums stay within 64 bits. */
-    const int64_t nn1 = g1[0] * g1[0] + g1[1] * g1[1] + r1 * r1 + p1 * p1 + y1 * y1;
-    const int64_t nn2 = g2[0] * g2[0] + g2[1] * g2[1] + g2[2] * g2[2] + r2 * r2 + p2 * p2 + y2 * y2;
+    const int32_t r1 = lu(lu(g1[0], f->N[0]) + lu(g1[1], f->N[1]), sb);
+    const int32_t p1 = lu(g1[0], h[0]) + lu(g1[1], h[1]);
+    const int32_t y1 = lu(g1[1], rho[0]) - lu(g1[0], rho[1]);
+    const int32_t r2 = lu(lu(g2[0], f->N[0]) + lu(g2[1], f->N[1]) + lu(g2[2], f->N[2]), sb);
+    const int32_t p2 = lu(g2[0], h[0]) + lu(g2[1], h[1]) + lu(g2[2], h[2]);
+    const int32_t y2 = lu(g2[1], rho[0]) - lu(g2[0], rho[1]);
+#define SQ(x) ((int64_t)(x) * (x))
+    const int64_t nn1 = SQ(g1[0]) + SQ(g1[1]) + SQ(r1) + SQ(p1) + SQ(y1);
+    const int64_t nn2 = SQ(g2[0]) + SQ(g2[1]) + SQ(g2[2]) + SQ(r2) + SQ(p2) + SQ(y2);
+#undef SQ
     /* n in Q24 m^2 */
-    n[0] = fx_shr(g2[2] * g1[1], 24);
-    n[1] = -fx_shr(g2[2] * g1[0], 24);
-    n[2] = fx_shr(g1[0] * g2[1] - g1[1] * g2[0], 24);
+    n[0] = fx_shr((int64_t)g2[2] * g1[1], 24);
+    n[1] = -fx_shr((int64_t)g2[2] * g1[0], 24);
+    n[2] = fx_shr((int64_t)g1[0] * g2[1] - (int64_t)g1[1] * g2[0], 24);
     return fx_scaled_mul(fx_scaled_of(nn1, 48), fx_scaled_of(nn2, 48));
 }
 

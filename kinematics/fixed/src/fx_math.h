@@ -11,15 +11,18 @@
 
 #include <stdint.h>
 
-/* x >> n, rounded toward minus infinity, for any n >= 0 (n <= 0 shifts left through fx_shl). */
+/* C11 leaves the right shift of a negative value to the implementation; GCC and Clang (the
+ * project's compilers, on the host and the board) document it as arithmetic, which this checks. */
+_Static_assert((-5 >> 1) == -3, "the right shift of a negative value must be arithmetic");
+
+/* x >> n, rounded toward minus infinity, for any n (n < 0 shifts left through fx_shl). */
 static inline int64_t fx_shr(int64_t x, int n)
 {
     if (n <= 0)
         return n == 0 ? x : (int64_t)((uint64_t)x << (-n > 63 ? 63 : -n));
     if (n > 63)
         return x < 0 ? -1 : 0;
-    /* Arithmetic shift of a negative value: implementation-defined in C11, written out instead. */
-    return x >= 0 ? (int64_t)((uint64_t)x >> n) : -(int64_t)(((uint64_t)(-(x + 1)) >> n)) - 1;
+    return x >> n;
 }
 
 /* x << n for 0 <= n <= 63, through unsigned arithmetic (a negative x is not undefined); the
@@ -80,11 +83,55 @@ static inline int32_t fx_mul32r(int32_t a, int32_t b, int sh)
 /* floor(sqrt(x)) of a 64-bit value (fx_math.c). */
 uint32_t fx_isqrt64(uint64_t x);
 
-/* round(num * 2^sh / den) for den != 0, 0 <= sh <= 62, with the quotient known to fit in 64 bits
- * by the caller; both operands are first brought to at most 62 bits (the quotient keeps 30 or
- * more significant bits).  Returns INT64_MAX or INT64_MIN when den is 0 or the quotient would
- * not fit (fx_math.c). */
-int64_t fx_div(int64_t num, int64_t den, int sh);
+/* The reciprocal of a 64-bit divisor, to 29 significant bits or better: 1 / |den| =
+ * r 2^-(94 - k), r in (2^30, 2^31] (a 32 / 32 division and one Newton-Raphson step; the Cortex-M3
+ * has no 64-bit divide, and the C library's takes a hundred instructions and more). */
+typedef struct {
+    uint32_t r;
+    int k;   /* leading zeros of |den| */
+    int neg; /* den < 0 */
+} fx_recip;
+
+static inline fx_recip fx_recip_of(int64_t den)
+{
+    const uint64_t d = fx_abs64(den);
+    const int k = fx_clz64(d);
+    const uint32_t dn = (uint32_t)((d << (k & 63)) >> 32); /* [2^31, 2^32) */
+    const uint32_t q = 0xFFFFFFFFu / ((dn >> 16) + 1u);    /* ~2^48 / dn, from below */
+    const uint32_t r0 = q << 14;                            /* ~2^62 / dn */
+    const uint64_t e = ((uint64_t)1 << 62) - (uint64_t)dn * r0;
+    const uint32_t r1 = r0 + (uint32_t)(((uint64_t)r0 * (uint32_t)(e >> 31)) >> 31);
+    return (fx_recip){r1, k, den < 0};
+}
+
+/* num 2^sh / den (den's reciprocal rc), rounded to nearest, to 29 significant bits; saturated
+ * to +-2^62 when it would come near that (a Newton step that large is clipped anyway). */
+static inline int64_t fx_mul_recip(int64_t num, fx_recip rc, int sh)
+{
+    const int64_t sat = (num > 0) != rc.neg ? ((int64_t)1 << 62) : -((int64_t)1 << 62);
+    if (num == 0)
+        return 0;
+    if (rc.k == 64)
+        return sat;
+    /* num brought to 62 bits, so that the product keeps its bits whatever the shift. */
+    const int up = 62 - fx_bits64(num);
+    const int64_t n = fx_shl(num, up);
+    const int t = 94 - rc.k - sh + up; /* the quotient is (n r) >> t, below 2^(93 - t) */
+    if (t < 31)
+        return sat;
+    int64_t hi = fx_mul64x32(n, (int32_t)(rc.r >> 1), 31); /* n r / 2^32, below 2^61 */
+    if (t >= 33 && t <= 94)
+        hi += (int64_t)1 << (t - 33);
+    const int64_t q = fx_shr(hi, t - 32);
+    return rc.neg ? -q : q;
+}
+
+/* round(num * 2^sh / den) to 29 significant bits, den != 0 (saturated as fx_mul_recip; +-2^62
+ * for den = 0). */
+static inline int64_t fx_div(int64_t num, int64_t den, int sh)
+{
+    return fx_mul_recip(num, fx_recip_of(den), sh);
+}
 
 /* A product of many factors of known sign but widely varying size (the type-2 check's sixth
  * powers of metres): m 2^e with |m| < 2^31 after every operation.  Integers only. */

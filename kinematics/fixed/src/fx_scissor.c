@@ -78,17 +78,16 @@ static void eval_point(const consts *k, int32_t s_a, int32_t s_b, point *pt)
     pt->det = pt->m22 * ea + pt->m21 * eb;
 }
 
-/* sqrt(x^2 + y^2) in the units of x and y, to 30 significant bits whatever its size (mu is a
- * ratio of such norms: a norm of 0.1 m in Q24 alone would have 21). */
-static fx_scaled norm2(int64_t x, int64_t y)
+/* x^2 + y^2 as m 2^e, whatever the size of x and y (M's second row reaches 2^33 in Q24). */
+static fx_scaled norm2sq(int64_t x, int64_t y)
 {
-    const int b = fx_bits64(x) > fx_bits64(y) ? fx_bits64(x) : fx_bits64(y);
-    const int k = b - 30; /* x 2^-k has 30 bits; negative k shifts up */
+    const int bx = fx_bits64(x), by = fx_bits64(y);
+    const int k = (bx > by ? bx : by) > 30 ? (bx > by ? bx : by) - 30 : 0;
     const int64_t xs = fx_shr(x, k), ys = fx_shr(y, k);
-    return fx_scaled_of((int64_t)fx_isqrt64((uint64_t)(xs * xs + ys * ys)), -k);
+    return fx_scaled_of(xs * xs + ys * ys, -2 * k);
 }
 
-/* A scaled non-negative value in Q(frac) as an int64, saturated. */
+/* A scaled non-negative value as an int64 in its units, saturated. */
 static int64_t scaled_to_int(fx_scaled x)
 {
     if (x.e > 0 && fx_bits64(x.m) + x.e > 62)
@@ -116,7 +115,7 @@ int fx_mu_clear(const tse_fx_geometry *g, const fx_sol *s)
 /* Fills out from the evaluation pt (at or within a few units of (s_a, s_b)) and returns 1 when
  * the point solves the pair and lies on the physical sheet (and, with limits, inside the stroke
  * and the stops).  A stalled iteration leaves |F| of 1e-2 m^2 and more, a root a few units of M
- * times the last step: 2^-14 of the size of F's terms lies well between. */
+ * times the last step (1e-7 m^2 of terms of some m^2): 2^-20 of their size lies well between. */
 static int describe(const tse_fx_geometry *g, const consts *k, int32_t s_a, int32_t s_b, const point *pt,
                     int limits, fx_sol *out)
 {
@@ -126,43 +125,69 @@ static int describe(const tse_fx_geometry *g, const consts *k, int32_t s_a, int3
     out->w2 = pt->w2;
     out->ea = pt->ea;
     out->eb = pt->eb;
-    const fx_scaled n1 = norm2(pt->ea, pt->eb), n2 = norm2(pt->m21, pt->m22);
-    const fx_scaled n12 = fx_scaled_mul(n1, n2);
-    out->mu = n12.m > 0 ? fx_scaled_div(fx_scaled_of(pt->det, 0), n12, 30) : 0;
-    const int64_t a1 = scaled_to_int(n1), a2 = scaled_to_int(n2); /* Q24 */
-    const int64_t nm = a1 < a2 ? a1 : a2;
-    out->n_min = nm >= ((int64_t)1 << 31) ? INT64_MAX : nm * nm;
+    /* mu = det / sqrt(n1 n2), the squared row norms' product in m 2^e: one square root. */
+    const fx_scaled n1 = norm2sq(pt->ea, pt->eb), n2 = norm2sq(pt->m21, pt->m22);
+    const fx_scaled root = fx_scaled_sqrt(fx_scaled_mul(n1, n2));
+    out->mu = root.m > 0 ? fx_scaled_div(fx_scaled_of(pt->det, 0), root, 30) : 0;
+    const int64_t a1 = scaled_to_int(n1), a2 = scaled_to_int(n2); /* Q48 */
+    out->n_min = a1 < a2 ? a1 : a2;
     const int64_t ag = k->g < 0 ? -(int64_t)k->g : k->g;
     const int64_t scale = k->rho2 + g->L2 + fx_mul64x32(pt->w2, (int32_t)ag, 26) + (int64_t)s_a * s_a + (int64_t)s_b * s_b;
-    const int solves = (int64_t)(fx_abs64(pt->F1) + fx_abs64(pt->F2)) <= fx_shr(scale, 12); /* Q50 */
+    const int solves = (int64_t)(fx_abs64(pt->F1) + fx_abs64(pt->F2)) <= fx_shr(scale, 18); /* Q50 */
     return solves && pt->det > 0 && s_a > 0 && s_b > 0 &&
            (!limits || (in_stroke(g, s_a, s_b) && pt->w2 >= g->w_lo2 && pt->w2 <= g->w_hi2));
 }
 
+/* Steps (max norm, units of 2^-24 m) below which the Jacobian's reciprocal is kept from one
+ * evaluation to the next (a chord step): its change over such a step is a few thousandths. */
+#define CHORD_REGIME ((int64_t)1 << 16)
+/* The error an iteration may end with, in units: the next step's predicted size. */
+#define SETTLE_ACC 3
+
 /* Bounded Newton from (*s_a, *s_b).  Returns -1 when it gives up (the point left untouched),
- * else describe's verdict on the point it ends on, left in (*s_a, *s_b). */
+ * else describe's verdict on the point it ends on, left in (*s_a, *s_b).
+ *
+ * A warm seed (a millimetre or so off) is what it is for: one Newton step from the seed's
+ * evaluation, then from the next evaluation a chord step with the same reciprocal of det M (the
+ * reciprocal is most of a step's cost on a core without a 64-bit divide), and it ends when two
+ * steps l1, l2 (max norms) show contraction (l2 <= l1 / 4) and predict the next below SETTLE_ACC
+ * (l2^2 / l1): then where it ends is evaluated once more for the checks (M, and F, whose residual
+ * tells a contraction towards a minimum of |F| from one towards a root).  A step that does not
+ * contract so brings a fresh reciprocal (plain Newton); far from a root steps are clipped to
+ * step_max.  A step of at most ACC2 (squared) ends it as well, its evaluation a few units away. */
 static int newton(const tse_fx_geometry *g, const consts *k, int32_t *s_a, int32_t *s_b, int max_iter,
                   int limits, int *iterations, fx_sol *out)
 {
     int32_t a = *s_a, b = *s_b;
+    point pt, jac;          /* this evaluation, and the one whose reciprocal is held */
+    fx_recip rc = {0, 64, 0};
+    int64_t l_prev = 0;     /* max norm of the previous step; 0 before the first */
+    int chord = 0;
     for (int it = 0;; ++it) {
-        point pt;
         eval_point(k, a, b, &pt);
-        if (pt.det == 0)
-            return -1;
-        /* The step M^-1 F = [m22 F1 + eb F2, ea F2 - m21 F1] / (2 det(M / 2)), with F brought to
+        if (!chord) {
+            if (pt.det == 0)
+                return -1;
+            jac = pt;
+            rc = fx_recip_of(2 * pt.det);
+        }
+        /* The step J^-1 F = [m22 F1 + eb F2, ea F2 - m21 F1] / (2 det(J / 2)), with F brought to
          * 26 bits (Q48 or coarser: exact near a root, where it is small) so that the products
          * stay in 64 bits. */
         const int bf = fx_bits64(pt.F1) > fx_bits64(pt.F2) ? fx_bits64(pt.F1) : fx_bits64(pt.F2);
         const int fs = bf > 28 ? bf - 26 : 2;
         const int64_t F1 = fx_shr(pt.F1, fs), F2 = fx_shr(pt.F2, fs);
-        const int64_t na = pt.m22 * F1 + (int64_t)pt.eb * F2;
-        const int64_t nb = (int64_t)pt.ea * F2 - pt.m21 * F1;
-        int64_t da = fx_div(na, 2 * pt.det, fs - 2), db = fx_div(nb, 2 * pt.det, fs - 2);
+        const int64_t na = jac.m22 * F1 + (int64_t)jac.eb * F2;
+        const int64_t nb = (int64_t)jac.ea * F2 - jac.m21 * F1;
+        int64_t da = fx_mul_recip(na, rc, fs - 2), db = fx_mul_recip(nb, rc, fs - 2);
         const int64_t lim = (int64_t)1 << 30;
-        int64_t n2 = INT64_MAX;
-        if (da < lim && da > -lim && db < lim && db > -lim)
+        int64_t n2 = INT64_MAX, l = INT64_MAX;
+        if (da < lim && da > -lim && db < lim && db > -lim) {
             n2 = da * da + db * db;
+            l = da < 0 ? -da : da;
+            if ((db < 0 ? -db : db) > l)
+                l = db < 0 ? -db : db;
+        }
         if (n2 <= ACC2) {
             a -= (int32_t)da;
             b -= (int32_t)db;
@@ -171,11 +196,23 @@ static int newton(const tse_fx_geometry *g, const consts *k, int32_t *s_a, int32
             *s_b = b;
             return describe(g, k, a, b, &pt, limits, out);
         }
+        const int contracts = l_prev > 0 && l < lim && 4 * l <= l_prev;
+        if (contracts && l * l <= SETTLE_ACC * l_prev) {
+            a -= (int32_t)da;
+            b -= (int32_t)db;
+            *iterations += 1;
+            *s_a = a;
+            *s_b = b;
+            /* The evaluation there gives M for the checks, and F: a contraction that ends off a
+             * root (towards a minimum of |F|) is told by its residual, as every other end. */
+            eval_point(k, a, b, &pt);
+            return describe(g, k, a, b, &pt, limits, out);
+        }
         if (it == max_iter)
             return -1;
         if (n2 > g->step_max2) {
             /* Along the step's direction (na, nb) / det, step_max long. */
-            const int sg = pt.det > 0 ? 1 : -1;
+            const int sg = rc.neg ? -1 : 1;
             const int bn = fx_bits64(na) > fx_bits64(nb) ? fx_bits64(na) : fx_bits64(nb);
             const int ks = bn > 30 ? bn - 30 : 0;
             const int64_t xa = fx_shr(na, ks) * sg, xb = fx_shr(nb, ks) * sg;
@@ -184,12 +221,16 @@ static int newton(const tse_fx_geometry *g, const consts *k, int32_t *s_a, int32
                 return -1;
             da = xa * g->step_max / len;
             db = xb * g->step_max / len;
+            l = 0; /* a clipped step says nothing of convergence */
         }
         a -= (int32_t)da;
         b -= (int32_t)db;
         *iterations += 1;
         if (a > g->s_box || a < -g->s_box || b > g->s_box || b < -g->s_box)
             return -1;
+        /* The next step a chord one while the steps are small and shrinking. */
+        chord = l > 0 && l <= CHORD_REGIME && (l_prev == 0 || contracts);
+        l_prev = l;
     }
 }
 

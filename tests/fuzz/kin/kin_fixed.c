@@ -91,6 +91,9 @@ void kin_fixed_run(const kin_case *c)
     }
     side_ik rd;
     side_ik_d(pose, seeded ? seed : NULL, &rd);
+    ref_context("fixed IK of (%d, %d, %d, %d, %d, %d) seeded %d: %s/%d, slides (%d, %d, %d, %d, %d, %d); double %s/%d",
+                px[0], px[1], px[2], px[3], px[4], px[5], seeded, tse_status_name(st), r.scissor, r.q[0], r.q[1],
+                r.q[2], r.q[3], r.q[4], r.q[5], tse_status_name((tse_status)rd.status), rd.scissor);
     if (!ref_comparable(&d, pose))
         return;
     orc_result o;
