@@ -116,9 +116,10 @@ tse_param_id tse_fx_geometry_init(tse_fx_geometry *g, const tse_fx_params *p)
     g->l0 = l0;
     g->r_act = r_act;
     g->r_top = r_top;
-    /* k L in Q30 (Q30 x Q24 >> 24): the slides are sensitive to the ball joints' offsets. */
-    g->r_top30 = fx_shr((int64_t)p->k4 * p->L + (1 << 23), 24);
-    const int64_t r_act30 = fx_shr((int64_t)p->k3 * p->L + (1 << 23), 24);
+    /* k L in Q28 (Q30 x Q24 >> 26; at most 4 m): the slides are sensitive to the ball joints'
+     * offsets. */
+    g->r_top28 = (int32_t)fx_shr((int64_t)p->k4 * p->L + (1 << 25), 26);
+    const int32_t r_act28 = (int32_t)fx_shr((int64_t)p->k3 * p->L + (1 << 25), 26);
     g->c = c2e;
     /* (1 - (1/k1)^2) / 4 with 1/k1 in Q24 (at most 8): Q48, then Q26. */
     const int64_t inv_k1 = fx_div(TSE_FX_ONE, p->k1, 24);
@@ -153,7 +154,7 @@ tse_param_id tse_fx_geometry_init(tse_fx_geometry *g, const tse_fx_params *p)
         const int32_t er[2] = {cb[i], sb[i]}; /* Q30 */
         const int32_t et[2] = {-sb[i], cb[i]};
         for (int k = 0; k < 2; ++k) {
-            f->o[k] = fx_shr((int64_t)r_act30 * er[k] + (1 << 29), 30);
+            f->o[k] = (int32_t)fx_shr((int64_t)r_act28 * er[k] + (1 << 29), 30);
             f->a[k] = (int32_t)fx_shr((int64_t)ce * et[k] + (int64_t)se * er[k] + (1 << 29), 30);
             f->b[k] = (int32_t)fx_shr(-(int64_t)ce * et[k] + (int64_t)se * er[k] + (1 << 29), 30);
         }

@@ -42,12 +42,6 @@ static void pose_frame_of(const int32_t pose[6], pose_frame *f)
     f->cp = cp;
 }
 
-/* Q24 x Q30 -> Q24 of a 64-bit length. */
-static int64_t len_by_unit(int64_t len, int32_t unit)
-{
-    return fx_mul64x32(len, unit, 30);
-}
-
 /* Q24 x Q30 -> Q24 of a length within int32 (every length of a solution: below 128 m). */
 static int32_t lu(int32_t len, int32_t unit)
 {
@@ -58,7 +52,7 @@ static int32_t lu(int32_t len, int32_t unit)
  * rows' squared norms in dF/dp (ik.c, type2_normal, in the same form).  Its slides, ball joint and
  * gradients are all below 32 m, and so every row entry is (below 64 m: int32 in Q24). */
 static fx_scaled type2_normal(const tse_fx_geometry *g, const pose_frame *f, int i, const fx_local *loc,
-                              int32_t s_a, int32_t s_b, int64_t n[3])
+                              int32_t s_a, int32_t s_b, int32_t n[3])
 {
     const tse_fx_scissor_frame *sf = &g->sc[i];
     const int32_t *rho = f->rho[i];
@@ -78,32 +72,32 @@ static fx_scaled type2_normal(const tse_fx_geometry *g, const pose_frame *f, int
     const int64_t nn1 = SQ(g1[0]) + SQ(g1[1]) + SQ(r1) + SQ(p1) + SQ(y1);
     const int64_t nn2 = SQ(g2[0]) + SQ(g2[1]) + SQ(g2[2]) + SQ(r2) + SQ(p2) + SQ(y2);
 #undef SQ
-    /* n in Q24 m^2 */
-    n[0] = fx_shr((int64_t)g2[2] * g1[1], 24);
-    n[1] = -fx_shr((int64_t)g2[2] * g1[0], 24);
-    n[2] = fx_shr((int64_t)g1[0] * g2[1] - (int64_t)g1[1] * g2[0], 24);
+    /* n in Q20 m^2 (below 2048 m^2: int32) */
+    n[0] = (int32_t)(((int64_t)g2[2] * g1[1]) >> 28);
+    n[1] = (int32_t)-(((int64_t)g2[2] * g1[0]) >> 28);
+    n[2] = (int32_t)(((int64_t)g1[0] * g2[1] - (int64_t)g1[1] * g2[0]) >> 28);
     return fx_scaled_mul(fx_scaled_of(nn1, 48), fx_scaled_of(nn2, 48));
 }
 
-static int64_t dot_e(const int64_t n[3], const pose_frame *f, int i, int j)
+static int64_t dot_e(const int32_t n[3], const pose_frame *f, int i, int j)
 {
     int64_t s = 0;
     for (int k = 0; k < 3; ++k)
-        s += len_by_unit(n[k], f->rho[i][k] - f->rho[j][k]);
-    return s; /* Q24 m^2 */
+        s += (int64_t)n[k] * (f->rho[i][k] - f->rho[j][k]);
+    return s >> 30; /* Q20 m^2 */
 }
 
 /* The Hadamard ratio from the three normals and the rows' norms (ik.c, type2_ratio), Q30. */
-static int32_t type2_ratio(const pose_frame *f, const int64_t n[3][3], const fx_scaled nn[3])
+static int32_t type2_ratio(const pose_frame *f, const int32_t n[3][3], const fx_scaled nn[3])
 {
     if (nn[0].m <= 0 || nn[1].m <= 0 || nn[2].m <= 0)
         return 0;
-    const fx_scaled t1 = fx_scaled_mul(fx_scaled_mul(fx_scaled_of(dot_e(n[0], f, 0, 1), 24),
-                                                     fx_scaled_of(dot_e(n[1], f, 1, 2), 24)),
-                                       fx_scaled_of(dot_e(n[2], f, 0, 2), 24));
-    const fx_scaled t2 = fx_scaled_mul(fx_scaled_mul(fx_scaled_of(dot_e(n[1], f, 0, 1), 24),
-                                                     fx_scaled_of(dot_e(n[0], f, 0, 2), 24)),
-                                       fx_scaled_of(dot_e(n[2], f, 1, 2), 24));
+    const fx_scaled t1 = fx_scaled_mul(fx_scaled_mul(fx_scaled_of(dot_e(n[0], f, 0, 1), 20),
+                                                     fx_scaled_of(dot_e(n[1], f, 1, 2), 20)),
+                                       fx_scaled_of(dot_e(n[2], f, 0, 2), 20));
+    const fx_scaled t2 = fx_scaled_mul(fx_scaled_mul(fx_scaled_of(dot_e(n[1], f, 0, 1), 20),
+                                                     fx_scaled_of(dot_e(n[0], f, 0, 2), 20)),
+                                       fx_scaled_of(dot_e(n[2], f, 1, 2), 20));
     fx_scaled det = fx_scaled_mul(fx_scaled_sub(t1, t2), fx_scaled_of(f->cp, 30));
     if (det.m < 0)
         det.m = -det.m;
@@ -141,11 +135,11 @@ tse_status tse_fx_ik(const tse_fx_geometry *g, const int32_t pose[6], const int3
     out->fallbacks = 0;
     pose_frame frame;
     pose_frame_of(pose, &frame);
-    int64_t C[3][3]; /* Q30 */
+    int64_t C[3][3]; /* Q28 */
     for (int i = 0; i < 3; ++i)
         for (int k = 0; k < 3; ++k) {
-            C[i][k] = fx_shl(pose[k], 6) + fx_mul64x32(g->r_top30, frame.rho[i][k], 30);
-            out->C[i][k] = clamp32(fx_shr(C[i][k] + 32, 6));
+            C[i][k] = (int64_t)pose[k] * 16 + (((int64_t)g->r_top28 * frame.rho[i][k]) >> 30);
+            out->C[i][k] = clamp32((C[i][k] + 8) >> 4);
         }
     for (int k = 0; k < 6; ++k)
         out->q[k] = TSE_FX_NONE;
@@ -162,7 +156,7 @@ tse_status tse_fx_ik(const tse_fx_geometry *g, const int32_t pose[6], const int3
 
     tse_status first = TSE_OK;
     int first_scissor = 0;
-    int64_t n[3][3];
+    int32_t n[3][3];
     fx_scaled nn[3];
     fx_local loc[3];
     for (int i = 0; i < 3; ++i) {
@@ -195,7 +189,7 @@ tse_status tse_fx_ik(const tse_fx_geometry *g, const int32_t pose[6], const int3
         out->scissor = first_scissor;
         return first;
     }
-    out->nu = type2_ratio(&frame, (const int64_t(*)[3])n, nn);
+    out->nu = type2_ratio(&frame, (const int32_t(*)[3])n, nn);
     if (!(out->nu >= g->p.nu_min)) {
         /* The float build names the row of dF/dp nearest the others' span; here scissor 1
          * (docs/kinematics.md, "The fixed-point build"). */

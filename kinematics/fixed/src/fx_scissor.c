@@ -12,32 +12,32 @@
 void fx_localize(const tse_fx_geometry *g, int i, const int64_t C[3], fx_local *loc)
 {
     /* The slides are sensitive to F's constants (near a scissor's bifurcation, a hundred times
-     * over): d is taken in Q27 (7.5e-9 m) from the Q30 ball joint, rho2 from it in Q50, u and v
+     * over): d is taken in Q28 (3.7e-9 m) from the Q28 ball joint, rho2 from it in Q50, u and v
      * in Q26 for F (and Q24 for M, whose rounding only slows Newton).  With d, u and v in Q24
-     * the slides moved by 1.5 um at a pose of mu 0.24 (tests/kinematics/test_ik_fixed.c). */
+     * the slides moved by 1.5 um at a pose of mu 0.24 (tests/kinematics/test_ik_fixed.c).
+     * Below 8 m on each axis d is an int32, and every product a 32 x 32 one. */
     const tse_fx_scissor_frame *f = &g->sc[i];
-    const int64_t d30[3] = {C[0] - f->o[0], C[1] - f->o[1], C[2]};
+    const int64_t dd[3] = {C[0] - f->o[0], C[1] - f->o[1], C[2]};
     /* 8 m per axis is the largest reach the format takes (ik_fixed.h): beyond, far. */
-    const int64_t room = (int64_t)8 << 30;
+    const int64_t room = (int64_t)1 << 31;
     loc->far = 1;
     loc->u = loc->v = 0;
     loc->rho2 = 0;
-    int32_t d27[3];
+    int32_t d[3];
     for (int k = 0; k < 3; ++k) {
-        if (d30[k] > room || d30[k] < -room)
+        if (dd[k] >= room || dd[k] <= -room)
             return;
-        d27[k] = (int32_t)fx_shr(d30[k] + 4, 3);
-        loc->d[k] = (int32_t)fx_shr(d30[k] + 32, 6);
+        d[k] = (int32_t)dd[k];
+        loc->d[k] = (int32_t)((dd[k] + 8) >> 4);
     }
-    const int64_t u30 = fx_mul64x32(d30[0], f->a[0], 30) + fx_mul64x32(d30[1], f->a[1], 30);
-    const int64_t v30 = fx_mul64x32(d30[0], f->b[0], 30) + fx_mul64x32(d30[1], f->b[1], 30);
-    loc->u = (int32_t)fx_shr(u30 + 32, 6);
-    loc->v = (int32_t)fx_shr(v30 + 32, 6);
-    loc->u26 = (int32_t)fx_shr(u30 + 8, 4);
-    loc->v26 = (int32_t)fx_shr(v30 + 8, 4);
-    loc->rho2 = fx_shr((int64_t)d27[0] * d27[0] + 8, 4) + fx_shr((int64_t)d27[1] * d27[1] + 8, 4) +
-                fx_shr((int64_t)d27[2] * d27[2] + 8, 4);
-    loc->far = fx_shr(loc->rho2, 2) > g->reach2;
+    const int64_t u58 = (int64_t)d[0] * f->a[0] + (int64_t)d[1] * f->a[1];
+    const int64_t v58 = (int64_t)d[0] * f->b[0] + (int64_t)d[1] * f->b[1];
+    loc->u = (int32_t)((u58 + ((int64_t)1 << 33)) >> 34);
+    loc->v = (int32_t)((v58 + ((int64_t)1 << 33)) >> 34);
+    loc->u26 = (int32_t)((u58 + ((int64_t)1 << 31)) >> 32);
+    loc->v26 = (int32_t)((v58 + ((int64_t)1 << 31)) >> 32);
+    loc->rho2 = (((int64_t)d[0] * d[0] + 32) >> 6) + (((int64_t)d[1] * d[1] + 32) >> 6) + (((int64_t)d[2] * d[2] + 32) >> 6);
+    loc->far = (loc->rho2 >> 2) > g->reach2;
 }
 
 /* The constants of one ball joint every evaluation needs. */

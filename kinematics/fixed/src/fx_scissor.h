@@ -29,7 +29,7 @@ typedef struct {
     int fallback;     /* 1 when the quartic was needed */
 } fx_sol;
 
-/* The ball joint C (Q30, in 64 bits) of scissor i in its frame. */
+/* The ball joint C (Q28, in 64 bits) of scissor i in its frame. */
 void fx_localize(const tse_fx_geometry *g, int i, const int64_t C[3], fx_local *loc);
 
 /* Whether the solution is inside the stroke and the stops. */

@@ -29,14 +29,14 @@ typedef struct {
 } tse_fx_params;
 
 typedef struct {
-    int64_t o[2];   /* slide origin, Q30 (the ball joints are formed in Q30: see fx_localize) */
+    int32_t o[2];   /* slide origin, Q28 (the ball joints are formed in Q28: see fx_localize) */
     int32_t a[2], b[2]; /* slide directions, Q30 */
 } tse_fx_scissor_frame;
 
 typedef struct {
     tse_fx_params p;
     int32_t l0, r_act, r_top;  /* Q24 */
-    int64_t r_top30;           /* r_top in Q30: the ball joints' offsets to 1e-9 m */
+    int32_t r_top28;           /* r_top in Q28: the ball joints' offsets to 4e-9 m */
     int32_t g;                 /* (1 - (L/l0)^2) / 4, Q26 (k1 >= 1/8 keeps it above -16) */
     int32_t c;                 /* cos(2 eta), Q30 */
     int64_t w_lo2, w_hi2;      /* the stops as a band on the base width squared, Q48 */
