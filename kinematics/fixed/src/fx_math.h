@@ -52,10 +52,11 @@ static inline uint64_t fx_abs64(int64_t x)
     return x < 0 ? (uint64_t)0 - (uint64_t)x : (uint64_t)x;
 }
 
-/* Bits needed for |x| (0 for 0). */
+/* Bits needed for |x| (0 for 0), but for a negative power of two, one less (the bits of
+ * -x - 1, which costs no negation): every caller leaves a bit of room for it. */
 static inline int fx_bits64(int64_t x)
 {
-    return 64 - fx_clz64(fx_abs64(x));
+    return 64 - fx_clz64((uint64_t)(x ^ (x >> 63)));
 }
 
 /* (a * b) >> sh for 0 <= sh <= 32, rounded toward minus infinity, without a 96-bit product: the
@@ -104,22 +105,21 @@ static inline fx_recip fx_recip_of(int64_t den)
     return (fx_recip){r1, k, den < 0};
 }
 
-/* num 2^sh / den (den's reciprocal rc), rounded to nearest, to 29 significant bits; saturated
- * to +-2^62 when it would come near that (a Newton step that large is clipped anyway). */
+/* num 2^sh / den (den's reciprocal rc) for |num| < 2^61, rounded to nearest: to 29 significant
+ * bits, and to within one unit of the result whatever its size (the product is taken whole, so a
+ * small numerator loses nothing); saturated to +-2^62 when the quotient could come near that (a
+ * Newton step that large is clipped anyway). */
 static inline int64_t fx_mul_recip(int64_t num, fx_recip rc, int sh)
 {
-    const int64_t sat = (num > 0) != rc.neg ? ((int64_t)1 << 62) : -((int64_t)1 << 62);
     if (num == 0)
         return 0;
-    if (rc.k == 64)
+    const int t = 94 - rc.k - sh; /* the quotient is (num r) >> t */
+    const int64_t sat = (num > 0) != rc.neg ? ((int64_t)1 << 62) : -((int64_t)1 << 62);
+    if (rc.k == 64 || t < 0)
         return sat;
-    /* num brought to 62 bits, so that the product keeps its bits whatever the shift. */
-    const int up = 62 - fx_bits64(num);
-    const int64_t n = fx_shl(num, up);
-    const int t = 94 - rc.k - sh + up; /* the quotient is (n r) >> t, below 2^(93 - t) */
-    if (t < 31)
+    int64_t hi = fx_mul64x32(num, (int32_t)(rc.r >> 1), 31); /* num r / 2^32, below 2^60 */
+    if (t < 32 && fx_bits64(hi) + (32 - t) > 61)
         return sat;
-    int64_t hi = fx_mul64x32(n, (int32_t)(rc.r >> 1), 31); /* n r / 2^32, below 2^61 */
     if (t >= 33 && t <= 94)
         hi += (int64_t)1 << (t - 33);
     const int64_t q = fx_shr(hi, t - 32);
