@@ -153,6 +153,24 @@ static int describe(const tse_fx_geometry *g, int32_t s_a, int32_t s_b, const po
            (!limits || (in_stroke(g, s_a, s_b) && pt->w2 >= g->w_lo2 && pt->w2 <= g->w_hi2));
 }
 
+/* (na, nb) 2^sh / den for den's reciprocal rc: fx_mul_recip twice, its shift and rounding
+ * worked out once. */
+static void step_of(int64_t na, int64_t nb, fx_recip rc, int sh, int64_t *da, int64_t *db)
+{
+    const int t = 94 - rc.k - sh;
+    if (rc.k == 64 || t < 33 || t > 94) {
+        *da = fx_mul_recip(na, rc, sh);
+        *db = fx_mul_recip(nb, rc, sh);
+        return;
+    }
+    const int32_t r = (int32_t)(rc.r >> 1);
+    const int64_t half = (int64_t)1 << (t - 33);
+    const int64_t qa = fx_shr(fx_mul64x32(na, r, 31) + half, t - 32);
+    const int64_t qb = fx_shr(fx_mul64x32(nb, r, 31) + half, t - 32);
+    *da = rc.neg ? -qa : qa;
+    *db = rc.neg ? -qb : qb;
+}
+
 /* Steps (max norm, units of 2^-24 m) below which the Jacobian's reciprocal is kept from one
  * evaluation to the next (a chord step): its change over such a step is a few thousandths. */
 #define CHORD_REGIME ((int64_t)1 << 16)
@@ -191,10 +209,17 @@ static int newton(const tse_fx_geometry *g, const consts *k, int32_t *s_a, int32
          * stay in 64 bits. */
         const int bf = fx_bits64(pt.F1) > fx_bits64(pt.F2) ? fx_bits64(pt.F1) : fx_bits64(pt.F2);
         const int fs = bf > 28 ? bf - 26 : 2;
-        const int64_t F1 = fx_shr(pt.F1, fs), F2 = fx_shr(pt.F2, fs);
-        const int64_t na = jac.m22 * F1 + (int64_t)jac.eb * F2;
-        const int64_t nb = (int64_t)jac.ea * F2 - jac.m21 * F1;
-        int64_t da = fx_mul_recip(na, rc, fs - 2), db = fx_mul_recip(nb, rc, fs - 2);
+        const int32_t F1 = (int32_t)fx_shr(pt.F1, fs), F2 = (int32_t)fx_shr(pt.F2, fs);
+        int64_t na, nb;
+        if (jac.m21 == (int32_t)jac.m21 && jac.m22 == (int32_t)jac.m22) { /* 32 x 32 products */
+            na = (int64_t)(int32_t)jac.m22 * F1 + (int64_t)jac.eb * F2;
+            nb = (int64_t)jac.ea * F2 - (int64_t)(int32_t)jac.m21 * F1;
+        } else {
+            na = jac.m22 * F1 + (int64_t)jac.eb * F2;
+            nb = (int64_t)jac.ea * F2 - jac.m21 * F1;
+        }
+        int64_t da, db;
+        step_of(na, nb, rc, fs - 2, &da, &db);
         const int64_t lim = (int64_t)1 << 30;
         int64_t n2 = INT64_MAX, l = INT64_MAX;
         if (da < lim && da > -lim && db < lim && db > -lim) {
