@@ -3,9 +3,11 @@
  * quotients, all in integers (a Cortex-M3 has a 32 x 32 -> 64 multiply, a 32 / 32 divide and a
  * count of leading zeros; nothing here needs more).
  *
- * Every shift count goes through fx_shr / fx_shl, which take any count: a count of 64 or more
- * gives 0 (or -1 for a negative value shifted right), never the undefined behaviour of C's
- * operators (an earlier attempt shifted by 66 in a scaling helper). */
+ * Every shift by a count computed at run time goes through fx_shr / fx_shl, which take any count:
+ * a count of 64 or more gives 0 (or -1 for a negative value shifted right), never the undefined
+ * behaviour of C's operators (an earlier attempt shifted by 66 in a scaling helper).  Shifts by a
+ * constant are written with C's operators where the value is known to fit; a left shift of a
+ * value that may be negative goes through fx_shl (undefined in C otherwise). */
 #ifndef TSE_FX_MATH_H
 #define TSE_FX_MATH_H
 
