@@ -9,6 +9,24 @@ function(tse_check_no_double target)
   endif()
 endfunction()
 
+# On a cross build: fail the build of `target` (a library, or with IMAGE a linked image, whose
+# every symbol is then looked at) when it references or contains a software floating-point
+# routine (cmake/check_no_float.cmake): the fixed-point kinematics and the Cortex-M3 build.
+#   tse_check_no_float(TARGET [IMAGE])
+function(tse_check_no_float target)
+  cmake_parse_arguments(ARG "IMAGE" "" "" ${ARGN})
+  if(CMAKE_CROSSCOMPILING)
+    set(defined "")
+    if(ARG_IMAGE)
+      set(defined -DDEFINED_SYMS=1)
+    endif()
+    add_custom_command(TARGET ${target} POST_BUILD
+      COMMAND ${CMAKE_COMMAND} -DNM=${CMAKE_NM} -DLIB=$<TARGET_FILE:${target}> ${defined}
+              -P ${PROJECT_SOURCE_DIR}/cmake/check_no_float.cmake
+      COMMENT "Checking ${target} for floating point")
+  endif()
+endfunction()
+
 # An image for a board: linked with the board's linker script (cmake/TseBoards.cmake) and its
 # description, with a map file, a .bin and a .hex beside the .elf, and its size printed.
 #   tse_board_image(TARGET [SEMIHOSTING] [BOARD NAME])

@@ -12,7 +12,10 @@ set(CMAKE_NM arm-none-eabi-nm CACHE FILEPATH "nm")
 # No OS to link a test program against: probe the compiler with a static library.
 set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
 
-set(TSE_CPU_FLAGS "-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard")
+# The Cortex-M3 build (arm-none-eabi-m3.cmake) sets its own flags and includes this file.
+if(NOT TSE_CPU_FLAGS)
+  set(TSE_CPU_FLAGS "-mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard")
+endif()
 # -fstack-usage -fcallgraph-info=su: each object gets a .su (frame of each function) and a .ci
 # (call graph with the frames) beside it; cmake/stack_report.py adds them up for an image.
 # -g: debug information stays in the .elf (the .bin and .hex carry none), so gdb can read the

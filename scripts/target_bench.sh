@@ -5,6 +5,8 @@
 # Prints `name,instructions` lines (medians over many calls; `_max` is the worst), then '#'
 # lines deriving CPU shares at 168 MHz, taking one instruction per cycle (the M4 with the ART
 # accelerator runs close to that; flash wait states on a cache miss and FPU divides take more).
+# The fixed-point kinematics on the emulated Cortex-M3 (cmake --preset cortex-m3) gives
+# `ik_fixed_warm` and `ik_fixed_cold` the same way (bench/target_m3).
 # Where the TSE emulator is built (emu/build.sh), the production image on it gives
 # `control_tick_delay_max_us,N`: the longest a control interrupt began behind its timer while a
 # 5 s move was blended into a running 5 s one (validate_blend above) with frames at the bus's full
@@ -28,6 +30,18 @@ awk -v tick="$(get step_tick_6axes)" -v fast="$(get step_tick_6axes_fast)" -v sl
   printf "# a 5 s move blended into a running 5 s one validates in %.0f ms, in the main loop (the control tick runs on in its interrupt)\n", cb / f * 1e3
   printf "# the longest one frame holds the board from the bus: %d instructions = %.2f ms (goal 2 ms, 336,000); the costliest commit to its answer: %.0f ms (STATUS, telemetry, heartbeats and STOP served meanwhile; the watchdog trips at 2 s)\n", fw, fw / f * 1e3, cw / f * 1e3
 }'
+# The Cortex-M3 build (issue 29): the fixed-point kinematics on QEMU's mps2-an385, with -icount
+# shift=6 and SysTick (bench/target_m3/bench_fixed.c calibrates the counts against 1,000 nops).
+cmake --preset cortex-m3 >/dev/null
+cmake --build --preset cortex-m3 --target target-bench-m3 >/dev/null
+m3=$(timeout 300 qemu-system-arm -M mps2-an385 -display none -monitor none -serial null \
+  -icount shift=6 -semihosting-config enable=on,target=native -kernel build/cortex-m3/bench/target_m3/target-bench-m3.elf 2>&1)
+echo "$m3"
+m3get() { echo "$m3" | awk -F, -v k="$1" '$1 == k { print $2 }'; }
+awk -v w="$(m3get ik_fixed_warm)" -v fw="$(get ik_float_warm)" 'BEGIN {
+  printf "# fixed-point warm IK on the Cortex-M3: %d instructions (goal 2,500; the M4F float build: %d); at 72 MHz and one instruction a cycle, %.1f us\n", w, fw, w / 72
+}'
+echo "# fk_fixed, control_segment_fixed: not measured (no fixed-point FK or controller yet: docs/kinematics.md, \"The fixed-point build\")"
 # Debian's python3, which has python3-can (scripts/setup.sh), as the board-emu tests run.
 py=/usr/bin/python3
 [ -x "$py" ] || py=python3

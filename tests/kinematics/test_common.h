@@ -81,6 +81,19 @@ static inline double rng_range(uint64_t *s, double lo, double hi)
     return lo + (hi - lo) * rng_unit(s);
 }
 
+/* The other designs the oracle tests sweep (test_oracle.c, test_ik_fixed.c): the prototype with
+ * k1, eta, k3 and k4 drawn from seed, the sixth (d = 5) with its slides pointing inwards. */
+static inline void test_other_design(uint64_t *seed, int d, tse_params *p)
+{
+    tse_params_default(p);
+    p->k1 = (tse_real)rng_range(seed, 0.2, 0.6);
+    p->eta = (tse_real)rng_range(seed, 0.2, 0.9);
+    p->k3 = (tse_real)rng_range(seed, 0.0, 0.05);
+    p->k4 = (tse_real)rng_range(seed, 0.08, 0.2);
+    if (d == 5)
+        p->eta = (tse_real)-0.4;
+}
+
 static inline orc_params test_orc_params(const tse_params *p)
 {
     orc_params o;

@@ -256,13 +256,7 @@ static void test_random_other_designs(void **state)
     memset(&t, 0, sizeof t);
     for (int d = 0; d < 6; d++) {
         tse_params p;
-        tse_params_default(&p);
-        p.k1 = (tse_real)rng_range(&seed, 0.2, 0.6);
-        p.eta = (tse_real)rng_range(&seed, 0.2, 0.9);
-        p.k3 = (tse_real)rng_range(&seed, 0.0, 0.05);
-        p.k4 = (tse_real)rng_range(&seed, 0.08, 0.2);
-        if (d == 5)
-            p.eta = (tse_real)-0.4; /* slides pointing inwards */
+        test_other_design(&seed, d, &p);
         tse_geometry g;
         orc_geom og;
         test_geometries(&p, &g, &og);

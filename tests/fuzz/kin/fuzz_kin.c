@@ -13,11 +13,14 @@
  *  - a pose the reference classifies clear of every threshold gets the reference's verdict;
  *  - FK: a non-finite input is `invalid`, a slide outside the stroke `stroke` at its scissor
  *    (before anything else), and `ok` is a finite pose that the library's IK and the reference
- *    both take back to the slides given, within the accuracy. */
+ *    both take back to the slides given, within the accuracy;
+ *  - the fixed-point IK (kin_fixed.h) agrees with the double build on the same numbers, or
+ *    refuses cleanly what its formats cannot hold. */
 #include <math.h>
 #include <string.h>
 
 #include "fuzz_target.h"
+#include "kin_fixed.h"
 #include "kin_input.h"
 #include "kin_ref.h"
 #include "kin_side.h"
@@ -189,5 +192,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (int k = 0; k < 2; ++k)
         if (k == 0 ? c.run_double : c.run_float)
             run(&precisions[k], &c);
+    /* The fixed-point build beside the double one (kin_fixed.h), on the same case. */
+    if (c.run_double)
+        kin_fixed_run(&c);
     return 0;
 }
