@@ -4,7 +4,8 @@
 # fuzz targets for a bounded time each (TSE_FUZZ_SECONDS, default 60; scripts/fuzz_long.sh runs
 # them for hours), the static analysis (scripts/static.sh), and the board build (whose float
 # kinematics must not pull in software double arithmetic, whose image must fit its flash and RAM
-# budgets) with its on-target tests on QEMU's netduinoplus2 and its tests on the project's
+# budgets) with its on-target tests on QEMU's netduinoplus2, the Cortex-M3 build of the fixed-point
+# kinematics with its on-target test on QEMU's mps2-an385, and the board's tests on the project's
 # emulator (emu/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -48,6 +49,13 @@ echo "=== stm32f4: cross build, on-target tests"
 cmake --preset stm32f4 >/dev/null
 cmake --build --preset stm32f4 -j "$jobs"
 ctest --preset stm32f4 -L target -j "$jobs"
+
+# The fixed-point kinematics on a core without an FPU (Cortex-M3, QEMU mps2-an385): built with no
+# floating-point routine in any image (checked by the build), its on-target test.
+echo "=== cortex-m3: cross build, on-target tests"
+cmake --preset cortex-m3 >/dev/null
+cmake --build --preset cortex-m3 -j "$jobs"
+ctest --preset cortex-m3 -L target -j "$jobs"
 
 # The production image on the TSE emulator (docs/emulator.md), on the host and on the harness's
 # vcan0 (tests/board_emu).  The emulator is built once and cached outside the clone (the first
