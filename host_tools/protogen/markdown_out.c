@@ -140,8 +140,11 @@ static void parameters(FILE *out)
                  "rate) before it replaces the old one, and the drivers' timing is programmed at once. A set\n"
                  "refused as a whole is answered `param_set` with the parameter set in `field` and the rule it\n"
                  "breaks in `where` (\"param_set rule\" above).\n"
-                 "`can_kbps` is only stored: the board applies it at start-up, so it takes effect after\n"
-                 "`PARAM_SAVE` and a restart.\n\n"
+                 "`can_kbps`, `node` and `enable_level` are only stored: the board applies them at start-up\n"
+                 "(tse-sim takes `node` unless `--node` overrides it), so they take effect after `PARAM_SAVE`\n"
+                 "and a restart. Until then `PARAM_GET` shows the value stored, and a controller whose `node` was\n"
+                 "set keeps answering on the id it started with (its `PARAM_VALUE` too); `tsectl node set`\n"
+                 "does the set and the save. A unit of 1 is a plain number (an id, a code).\n\n"
                  "| id | name | unit | min | max | default | meaning |\n|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < FP_COUNT; ++i) {
         const fw_param_def *p = &fw_param_table[i];

@@ -12,11 +12,16 @@ static void set_pull_up(tse_gpio_regs *port, unsigned pin)
     port->PUPDR = (port->PUPDR & ~(3u << (2u * pin))) | GPIO_PULL_UP << (2u * pin);
 }
 
-static void output(tse_gpio_regs *port, unsigned pin)
+static void output_at(tse_gpio_regs *port, unsigned pin, bool high)
 {
-    port->BSRR = 1u << (pin + 16u); /* low before it drives: drivers stay disabled */
+    port->BSRR = 1u << (pin + (high ? 0u : 16u)); /* its level before it drives */
     port->OSPEEDR = (port->OSPEEDR & ~(3u << (2u * pin))) | GPIO_SPEED_HIGH << (2u * pin);
     set_mode(port, pin, GPIO_MODE_OUTPUT);
+}
+
+static void output(tse_gpio_regs *port, unsigned pin)
+{
+    output_at(port, pin, false);
 }
 
 static void input(tse_gpio_regs *port, unsigned pin)
@@ -33,7 +38,7 @@ void board_pins_init(void)
         input(PIN_LIM_PORT, PIN_LIM_SHIFT + k);
         input(PIN_LIMH_PORT, pin_limh[k]);
     }
-    output(PIN_ENABLE_PORT, PIN_ENABLE);
+    output_at(PIN_ENABLE_PORT, PIN_ENABLE, !board_enable_active_high()); /* drivers disabled */
     output(PIN_LED_PORT, PIN_LED);
     input(PIN_ESTOP_PORT, PIN_ESTOP);
     const unsigned can[2] = {PIN_CAN_RX, PIN_CAN_TX};

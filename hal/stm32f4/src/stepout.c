@@ -14,6 +14,15 @@ static struct {
     uint32_t pulse_ticks;
 } out;
 
+/* ENABLE's active level: the board's until board_stepper_hal is told otherwise (the enable_level
+ * parameter), so that board_outputs_safe, which may run before it, never drives the drivers on. */
+static bool enable_high = ENABLE_ACTIVE_HIGH != 0;
+
+bool board_enable_active_high(void)
+{
+    return enable_high;
+}
+
 static void set_dir(void *ctx, uint8_t forward)
 {
     (void)ctx;
@@ -42,7 +51,7 @@ static void enable(void *ctx, bool on)
 {
     (void)ctx;
     const uint32_t bit = 1u << PIN_ENABLE;
-    PIN_ENABLE_PORT->BSRR = (on == (ENABLE_ACTIVE_HIGH != 0)) ? bit : bit << 16;
+    PIN_ENABLE_PORT->BSRR = (on == enable_high) ? bit : bit << 16;
 }
 
 static void timing(void *ctx, uint32_t pulse_ns, uint32_t dir_setup_ns)
@@ -59,8 +68,10 @@ static void timing(void *ctx, uint32_t pulse_ns, uint32_t dir_setup_ns)
     TSE_TIM4->ARR = out.pulse_ticks;
 }
 
-hal_stepper board_stepper_hal(uint32_t timer_hz)
+hal_stepper board_stepper_hal(uint32_t timer_hz, int enable_active_high)
 {
+    enable_high = enable_active_high < 0 ? ENABLE_ACTIVE_HIGH != 0 : enable_active_high != 0;
+    enable(0, false);
     out.timer_hz = timer_hz;
     TSE_TIM4->CR1 = 0;
     TSE_TIM4->PSC = 0;
@@ -77,7 +88,6 @@ void board_outputs_safe(void)
 {
     TSE_TIM2->CR1 = 0; /* no further step interrupt */
     TSE_TIM2->DIER = 0;
-    const uint32_t enable_off = 1u << (PIN_ENABLE + (ENABLE_ACTIVE_HIGH ? 16u : 0u));
-    PIN_ENABLE_PORT->BSRR = enable_off;
+    enable(0, false);
     PIN_STEP_PORT->BSRR = STEP_MASK_ALL << (PIN_STEP_SHIFT + 16u);
 }

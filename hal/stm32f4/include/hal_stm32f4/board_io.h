@@ -11,12 +11,20 @@
 #include "hal/inputs.h"
 #include "hal/stepper.h"
 
-/* Configures every pin of pinmap.h: outputs low (drivers disabled), inputs with pull-ups, the
- * CAN pins on their alternate function.  Call once, after the peripheral clocks are on. */
+/* Configures every pin of pinmap.h: outputs low, ENABLE at its inactive level (drivers disabled),
+ * inputs with pull-ups, the CAN pins on their alternate function.  Call once, after the
+ * peripheral clocks are on (and after board_stepper_hal, for an ENABLE level other than the
+ * board's). */
 void board_pins_init(void);
 
-/* STEP/DIR/ENABLE.  timer_hz: the clock of TIM4, which ends each STEP pulse (a one-shot). */
-hal_stepper board_stepper_hal(uint32_t timer_hz);
+/* STEP/DIR/ENABLE.  timer_hz: the clock of TIM4, which ends each STEP pulse (a one-shot).
+ * enable_active_high: ENABLE's active level, 1 high, 0 low, negative the board's own
+ * (ENABLE_ACTIVE_HIGH); it sets ENABLE inactive at once, and board_outputs_safe and
+ * board_pins_init use the same level from then on. */
+hal_stepper board_stepper_hal(uint32_t timer_hz, int enable_active_high);
+
+/* Whether ENABLE is active high: the board's level until board_stepper_hal sets another. */
+bool board_enable_active_high(void);
 
 /* Limit switches (pressed, or a broken wire, reads as pressed) and the e-stop input. */
 hal_inputs board_inputs_hal(void);
