@@ -162,15 +162,7 @@ int run_params(tlink *l, int argc, char **argv)
     (void)argc;
     const char *sub = argv[0];
     if (!strcmp(sub, "save")) {
-        const int32_t v[1] = {0x45564153}; /* "SAVE" */
-        if (link_send(l, PM_PARAM_SAVE, v) != 0) {
-            ctl_error("cannot send on the bus");
-            return EXIT_BUS;
-        }
-        proto_message rej;
-        const int rc = ctl_answer(l, proto_table[PM_PARAM_SAVE].function, -1, NULL, &rej);
-        if (rc == EXIT_REJECTED)
-            ctl_print_reject(&rej);
+        const int rc = ctl_params_save(l);
         if (rc == EXIT_OK)
             printf("parameters saved\n");
         return rc;
@@ -202,13 +194,9 @@ int run_params(tlink *l, int argc, char **argv)
     int32_t raw;
     if (parse_set(argv, &k, &raw) != EXIT_OK)
         return EXIT_USAGE;
-    const int32_t v[2] = {k.id, raw};
-    if (link_send(l, PM_PARAM_SET, v) != 0) {
-        ctl_error("cannot send on the bus");
-        return EXIT_BUS;
-    }
     proto_message rej;
-    const int rc = ctl_answer(l, proto_table[PM_PARAM_SET].function, -1, NULL, &rej);
+    int32_t now;
+    const int rc = ctl_param_set(l, k.id, raw, &now, &rej);
     if (rc == EXIT_REJECTED) {
         ctl_print_reject(&rej);
         if (rej.v[2] == FW_REASON_PARAM_SET)
@@ -217,16 +205,9 @@ int run_params(tlink *l, int argc, char **argv)
             explain_set(l, k.id, raw, &rej);
         return rc;
     }
-    if (rc != EXIT_OK)
-        return rc;
-    proto_message m;
-    const uint64_t end = link_now_us() + (uint64_t)tsectl_timeout_ms * 1000u;
-    while (link_now_us() < end)
-        if (link_recv(l, &m, 50) == 1 && m.msg == PM_PARAM_VALUE && m.v[0] == k.id) {
-            print_value(argv[1], &k, m.v[1]);
-            speed_note(l, k.id, m.v[1]);
-            return EXIT_OK;
-        }
-    ctl_error("no PARAM_VALUE after the set was acknowledged");
-    return EXIT_TIMEOUT;
+    if (rc == EXIT_OK) {
+        print_value(argv[1], &k, now);
+        speed_note(l, k.id, now);
+    }
+    return rc;
 }
