@@ -25,7 +25,7 @@
 #define F_INFO_GET 0x12u
 #define F_PARAM_VALUE 0x27u
 #define F_INFO 0x29u
-#define REASON_PARAM_RANGE 11u /* docs/protocol.md, reject reasons */
+#define REASON_PARAM_RANGE 11u /* docs/protocol.md, "reject reason" */
 
 static uint16_t id_of(unsigned function, unsigned node)
 {
