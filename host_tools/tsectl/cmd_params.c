@@ -191,7 +191,7 @@ int run_params(tlink *l, int argc, char **argv)
         }
         return rc;
     }
-    int32_t raw;
+    int32_t raw = 0; /* (set by parse_set when it returns EXIT_OK) */
     if (parse_set(argv, &k, &raw) != EXIT_OK)
         return EXIT_USAGE;
     proto_message rej;
@@ -200,8 +200,6 @@ int run_params(tlink *l, int argc, char **argv)
     if (rc == EXIT_REJECTED) {
         ctl_print_reject(&rej);
         if (rej.v[2] == FW_REASON_PARAM_SET)
-            /* raw is set: parse_set returned EXIT_OK, which usage_error (in main.c, out of the
-             * analyzer's sight) never returns.  NOLINTNEXTLINE(clang-analyzer-core.CallAndMessage) */
             explain_set(l, k.id, raw, &rej);
         return rc;
     }

@@ -10,13 +10,13 @@
 #include "tsectl.h"
 
 typedef struct {
+    ctl_info about;     /* version and rates, when info */
+    int infos;          /* INFOs counted: more than one, two controllers on this id */
     bool heard;         /* any frame from the node (an answer, or its STATUS) */
-    bool info;          /* INFO came: version and rates below */
+    bool info;          /* INFO came */
     bool info_unknown;  /* INFO_GET refused unknown: a firmware older than INFO */
     bool board;         /* BOARD came: name below */
     bool board_refused; /* page 1 refused: a firmware older than BOARD */
-    int infos;          /* INFOs counted: more than one, two controllers on this id */
-    ctl_info about;
     char name[9];       /* BOARD's characters, NUL-terminated */
 } scan_entry;
 
