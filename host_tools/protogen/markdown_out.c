@@ -37,7 +37,10 @@ static void intro(FILE *out)
                  "little-endian; every message has one fixed length. A frame of the wrong length, an unknown\n"
                  "function, a field outside its range or a command the state does not accept is answered with\n"
                  "`REJECT` naming the reason, and changes nothing. The states, what moves the controller from\n"
-                 "one to another and what each command does in each are in [controller.md](controller.md).\n\n");
+                 "one to another and what each command does in each are in [controller.md](controller.md).\n"
+                 "A controller's node id is its parameter `node`, taken at start-up (below). A host finds the\n"
+                 "controllers on a bus by sending `INFO_GET` pages 0 and 1 to each node 1..15 and reading who\n"
+                 "answers with `INFO` and `BOARD` (`tsectl scan`, `tse.can.scan`).\n\n");
     fprintf(out, "A pose is staged in `POSE_A`, `POSE_B`, `POSE_C` under one sequence number and applied by a\n"
                  "commit (`MOVE_COMMIT` or `TRAJ_COMMIT`) carrying the same number: only when all three parts of\n"
                  "that number arrived (in any order), and only when the number is newer than the last accepted\n"
