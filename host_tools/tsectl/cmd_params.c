@@ -66,6 +66,16 @@ static void speed_note(tlink *l, int id, int32_t raw)
                (double)v.vmax, proto_slide_limits[v.by].name, l->node, r.step_hz, r.segment_hz);
 }
 
+/* After a set of a parameter the board takes at start-up only (docs/protocol.md, "Parameters"),
+ * that the controller holds it but runs on as before until a save and a restart. */
+static void start_note(const tlink *l, int id)
+{
+    if (id != FP_CAN_KBPS && id != FP_NODE && id != FP_ENABLE_LEVEL)
+        return;
+    printf("# stored, not yet in effect: node %u takes %s at start-up ('params save', then restart it)%s\n", l->node,
+           fw_param_table[id].name, id == FP_NODE ? "; until then it answers on its current id" : "");
+}
+
 /* Checks NAME and VALUE of a set before anything is sent. */
 static int parse_set(char **argv, param_key *k, int32_t *raw)
 {
@@ -206,6 +216,7 @@ int run_params(tlink *l, int argc, char **argv)
     if (rc == EXIT_OK) {
         print_value(argv[1], &k, now);
         speed_note(l, k.id, now);
+        start_note(l, k.id);
     }
     return rc;
 }

@@ -66,6 +66,10 @@ sed 's/^/  | /' scan.txt
 check "scan finds nodes 5 and 7, not 3" \
   "[ $rc -eq 0 ] && grep -Eq \"$(row 5)\" scan.txt && grep -Eq \"$(row 7)\" scan.txt && ! grep -Eq '^ *3  ' scan.txt"
 
+tsectl --iface vcan0 --node 5 --timeout "$answer_ms" params set enable_level 2 >out.txt 2>&1; rc=$?
+check "params set of a parameter taken at start-up says it is not yet in effect" \
+  "[ $rc -eq 0 ] && grep -qx 'enable_level = 2' out.txt && grep -q '^# stored, not yet in effect: node 5 takes enable_level at start-up' out.txt"
+
 kill -INT $a $b
 wait $a $b
 tsectl --iface vcan0 --timeout 500 scan >scan.txt 2>&1; rc=$?
