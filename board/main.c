@@ -25,14 +25,11 @@
 #include "hal_stm32f4/regs_can.h"
 #include "hal_stm32f4/regs_core.h"
 
-#ifndef TSE_BOARD_NODE
-#define TSE_BOARD_NODE 1
-#endif
-/* The board this image is built for (CMake defines TSE_BOARD_NAME per image: board/CMakeLists.txt). */
+/* The board's name in BOARD (INFO_GET page 1), from board/CMakeLists.txt. */
 #ifndef TSE_BOARD_NAME
-#define TSE_BOARD_NAME "generic_f405"
+#error "TSE_BOARD_NAME: the board's name, given by board/CMakeLists.txt"
 #endif
-#define BOARD_NAME TSE_BOARD_NAME
+_Static_assert(sizeof TSE_BOARD_NAME - 1u <= 8u, "TSE_BOARD_NAME: BOARD carries 8 characters at most");
 
 /* The board's rates, the built-in ones (fw/limits.h); the controller reports them in INFO, and
  * tsectl and tse.can judge its paths and sets at what it reports. */
@@ -130,6 +127,12 @@ void board_control(void)
     }
 }
 
+/* enable_level (fw_enable_level) as board_stepper_hal takes it: 1 high, 0 low, -1 the board's. */
+static int enable_level_of(int32_t level)
+{
+    return level == FW_ENABLE_LEVEL_HIGH ? 1 : level == FW_ENABLE_LEVEL_LOW ? 0 : -1;
+}
+
 /* The thread waits for the control tick to take what it handed over: the tick's interrupt wakes
  * it within a control period. */
 static void await_tick(void *ctx)
@@ -143,7 +146,7 @@ static void boot_line(const board_state *b)
 {
     board_bootline_open(b->clocks.apb1_hz, b->clocks.apb2_hz);
     board_bootline_puts("tse-fw node ");
-    board_bootline_dec(TSE_BOARD_NODE);
+    board_bootline_dec(fw_config_of(b->fw)->node);
     board_bootline_puts(": boot faults ");
     board_bootline_hex(b->boot_faults);
     if ((b->boot_faults & BOOT_FAULT_CLOCK) && b->clocks.crystal.verdict > HSE_CHECK_OK) {
@@ -184,27 +187,33 @@ int main(void)
                          b->clocks.failed);
     }
     board_clock_enable_peripherals();
-    board_pins_init();
 
     fw_hal hal;
     memset(&hal, 0, sizeof hal);
-    hal.stepper = board_stepper_hal(b->clocks.apb1_timer_hz, -1); /* the description's ENABLE level */
-    hal.inputs = board_inputs_hal();
-    hal.clock = board_clock_hal(b->clocks.apb1_timer_hz);
-    hal.can = bxcan_hal(&b->can);
     if (param_log_init(&b->store, flash_f4_ops(flash_f4_feed_iwdg)) != 0)
         b->boot_faults |= BOOT_FAULT_STORAGE;
     hal.storage = param_log_hal(&b->store);
+    /* The ENABLE level is the stored enable_level's, known before the pins drive: an active-low
+     * driver is never enabled by a pin set low at start-up.  Taken here only (docs/board.md). */
+    static fw_param_set stored; /* off the stack, as fw_init's own */
+    fw_params_stored(&hal.storage, &stored);
+    hal.stepper = board_stepper_hal(b->clocks.apb1_timer_hz, enable_level_of(stored.v[FP_ENABLE_LEVEL]));
+    board_pins_init();
+    hal.inputs = board_inputs_hal();
+    hal.clock = board_clock_hal(b->clocks.apb1_timer_hz);
+    hal.can = bxcan_hal(&b->can);
 
-    const fw_config cfg = {TSE_BOARD_NODE, CONTROL_HZ, STEP_HZ, await_tick, NULL};
+    /* Node 0: the controller's node parameter, as stored (fw_config_of then says which). */
+    const fw_config cfg = {0, CONTROL_HZ, STEP_HZ, await_tick, NULL, TSE_BOARD_NAME};
     b->fw = fw_init(&b->fw_mem, &hal, &cfg);
     if (!b->fw)
         board_unexpected_irq(); /* a configuration that cannot run: record and stop */
 
-    /* CAN at the stored bit rate (a change takes effect here, after a save and a restart).  A
-     * controller that has not yet seen an idle bus joins it by itself later: not a fault. */
+    /* CAN at the stored bit rate and node id (a change takes effect here, after a save and a
+     * restart).  A controller that has not yet seen an idle bus joins it by itself later: not a
+     * fault. */
     b->can_status = bxcan_init(&b->can, TSE_CAN1, b->clocks.apb1_hz,
-                               (uint32_t)fw_params_of(b->fw)->v[FP_CAN_KBPS] * 1000u, TSE_BOARD_NODE, 0);
+                               (uint32_t)fw_params_of(b->fw)->v[FP_CAN_KBPS] * 1000u, fw_config_of(b->fw)->node, 0);
     if (b->can_status == BXCAN_OK || b->can_status == BXCAN_ERR_LEAVE_INIT) {
         tse_nvic_enable(IRQ_CAN1_RX0, PRIO_CAN);
         tse_nvic_enable(IRQ_CAN1_TX, PRIO_CAN);

@@ -31,11 +31,11 @@ endfunction()
 # description, with a map file, a .bin and a .hex beside the .elf, and its size printed.
 #   tse_board_image(TARGET [SEMIHOSTING] [BOARD NAME])
 # SEMIHOSTING: a test or benchmark image for QEMU, linked with newlib's system-call stubs and
-# semihosting output; never the production image.  BOARD: default generic_f405.
+# semihosting output; never the production image.  BOARD: default gen_f405.
 function(tse_board_image target)
   cmake_parse_arguments(ARG "SEMIHOSTING" "BOARD" "" ${ARGN})
   if(NOT ARG_BOARD)
-    set(ARG_BOARD generic_f405)
+    set(ARG_BOARD gen_f405)
   endif()
   tse_board_ldscript(${ARG_BOARD} ldscript)
   tse_board_desc_library(${ARG_BOARD})

@@ -11,7 +11,7 @@ foreach(f IN LISTS _tse_board_files)
 endforeach()
 list(SORT TSE_BOARDS)
 
-set(TSE_BOARD generic_f405 CACHE STRING "the board tse-fw is built for (a file hal/stm32f4/boards/NAME.h)")
+set(TSE_BOARD gen_f405 CACHE STRING "the board tse-fw is built for (a file hal/stm32f4/boards/NAME.h)")
 set_property(CACHE TSE_BOARD PROPERTY STRINGS ${TSE_BOARDS})
 if(NOT TSE_BOARD IN_LIST TSE_BOARDS)
   string(REPLACE ";" ", " _known "${TSE_BOARDS}")

@@ -17,7 +17,7 @@
 #              168 MHz Cortex-M4's speed; "off": the host's clock)
 # The rig is wired to the pins of the board the image is built for, read from its .tse_board
 # section (emu/board_props.py; an image without one gets the generic board's), and an image linked
-# behind a bootloader (mks_monster8 at 0x0800C000) starts from its own vector table, as that
+# behind a bootloader (monster8 at 0x0800C000) starts from its own vector table, as that
 # bootloader's jump would start it.
 # The emulator is the binary emu/build.sh built (TSE_EMU_QEMU overrides); it exits with the
 # image's QEMU (kill it to stop: SIGTERM ends it cleanly).

@@ -11,6 +11,7 @@ packages=(
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi   # the board build
   qemu-system-arm gdb-multiarch     # on-target tests and instruction counts (netduinoplus2)
   openocd stlink-tools              # flashing the board through an ST-Link
+  dfu-util stm32flash               # flashing without a probe: USB DFU and the UART bootloader
   python3 python3-mpmath            # the independent high-precision oracle
   python3-numpy python3-scipy       # the fsolve baseline of the benchmark; tse.kin's arrays
   python3-pytest python3-setuptools # the Python tests (python/tests) and pip install ./python

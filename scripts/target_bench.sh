@@ -24,7 +24,7 @@ awk -v tick="$(get step_tick_6axes)" -v fast="$(get step_tick_6axes_fast)" -v sl
     -v c1="$(get commit_1s)" -v c5="$(get commit_5s)" -v cb="$(get validate_blend)" -v fw="$(get frame_worst)" -v cw="$(get commit_worst)" 'BEGIN {
   f = 168e6
   printf "# stepping 6 axes at 192 kHz: step interrupt at 200 kHz x %d instructions = %.1f %% of the CPU (worst tick %d = %.2f us of jitter)\n", tick, 100 * 200e3 * tick / f, tmax, tmax / f * 1e6
-  printf "# the step interrupt with its outputs: %d instructions where the six STEP (and DIR) pins share a port (one BSRR write, generic_f405), %d where they do not (a write per slide, mks_monster8): %.2f times (goal: at most 1.5)\n", fast, slide, slide / fast
+  printf "# the step interrupt with its outputs: %d instructions where the six STEP (and DIR) pins share a port (one BSRR write, gen_f405), %d where they do not (a write per slide, monster8): %.2f times (goal: at most 1.5)\n", fast, slide, slide / fast
   printf "# 1 kHz control loop: %d instructions a segment = %.1f %% of the CPU\n", seg, 100 * 1e3 * seg / f
   printf "# commit to first step: a 1 s move validates in %.1f ms, a 5 s move in %.1f ms (then the next 1 ms control tick)\n", c1 / f * 1e3, c5 / f * 1e3
   printf "# a 5 s move blended into a running 5 s one validates in %.0f ms, in the main loop (the control tick runs on in its interrupt)\n", cb / f * 1e3

@@ -175,7 +175,7 @@ int bench_rig_start(void)
     hal.inputs = (hal_inputs){0, in_limits, in_estop};
     hal.clock = (hal_clock){0, clk_now};
     hal.storage = (hal_storage){0, st_load, st_save};
-    const fw_config cfg = {1, 1000, 200000, NULL, NULL}; /* one context: no await */
+    const fw_config cfg = {1, 1000, 200000, NULL, NULL, NULL}; /* one context: no await */
     rx_head = rx_count = 0;
     bench_ctl = fw_init(&bench_mem, &hal, &cfg);
     if (!bench_ctl || fw_testing_homed_at_home(bench_ctl) != 0)

@@ -188,10 +188,10 @@ static hal_stepper outputs_on(const board_desc *d)
 static void bench_stepgen(void)
 {
     step_ticks(NULL, "step_tick_6axes", "step_tick_6axes_max");
-    /* generic_f405: STEP1..6 on PC0..PC5, DIR on PC6..PC11: one BSRR write each. */
+    /* gen_f405: STEP1..6 on PC0..PC5, DIR on PC6..PC11: one BSRR write each. */
     const hal_stepper fast = outputs_on(&tse_board_desc);
     step_ticks(&fast, "step_tick_6axes_fast", "step_tick_6axes_fast_max");
-    /* The same with mks_monster8's STEP and DIR pins (hal/stm32f4/boards/mks_monster8.h), on four
+    /* The same with monster8's STEP and DIR pins (hal/stm32f4/boards/monster8.h), on four
      * ports: a write per slide. */
     static board_desc scattered;
     scattered = tse_board_desc;

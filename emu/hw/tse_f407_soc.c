@@ -219,7 +219,7 @@ static bool make_core(TseF407SocState *s, Error **errp)
     qdev_prop_set_uint32(armv7m, "num-irq", 82);
     qdev_prop_set_string(armv7m, "cpu-type", s->cpu_type);
     qdev_prop_set_bit(armv7m, "enable-bitband", true);
-    /* An image linked behind a bootloader (mks_monster8: 0x0800C000) starts as that bootloader's
+    /* An image linked behind a bootloader (monster8: 0x0800C000) starts as that bootloader's
      * jump starts it: SP and PC from its own vector table, VTOR there (a core without the
      * Security Extension takes the non-secure reset VTOR). */
     qdev_prop_set_uint32(armv7m, "init-svtor", s->app_addr);

@@ -16,7 +16,7 @@
 
 OBJECT_DECLARE_SIMPLE_TYPE(TseF407SocState, TSE_F407_SOC)
 
-#define TSE_F407_NUM_GPIO 7  /* A..G: the LQFP144 part's ports (olimex_e407 uses F) */
+#define TSE_F407_NUM_GPIO 7  /* A..G: the LQFP144 part's ports (olx_e407 uses F) */
 #define TSE_F407_NUM_GATES 20
 
 struct TseF407SocState {

@@ -200,7 +200,7 @@ static void dir_in(void *opaque, int k, int level)
 }
 
 /* The drivers' enable: high enables them, or low with enable-active-low (a stepstick's EN, as on
- * the mks_monster8 board). */
+ * the monster8 board). */
 static void enable_in(void *opaque, int n, int level)
 {
     TseRigState *s = TSE_RIG(opaque);

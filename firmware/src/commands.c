@@ -228,6 +228,17 @@ static void info(fw_controller *c)
     fw_send(c, PM_INFO, v);
 }
 
+/* BOARD: the platform's name for its board (fw_config.board), NUL-padded; a character the wire
+ * cannot carry (not 7-bit ASCII) ends the name there, so that BOARD always goes out. */
+static void board(fw_controller *c)
+{
+    int32_t v[PROTO_MAX_FIELDS] = {0};
+    const char *name = c->cfg.board ? c->cfg.board : "";
+    for (int i = 0; i < proto_wire[PM_BOARD].nfields && name[i] && (unsigned char)name[i] < 0x80u; ++i)
+        v[i] = (unsigned char)name[i];
+    fw_send(c, PM_BOARD, v);
+}
+
 static void param_set(fw_controller *c, const proto_message *m, uint8_t function)
 {
     fw_thread *th = &c->th;
@@ -381,9 +392,12 @@ void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
     case PM_PARAM_SET:
         param_set(c, m, t.function);
         return;
-    case PM_INFO_GET: /* page 0, the only one the table lets through */
+    case PM_INFO_GET: /* pages 0 and 1, the ones the table lets through */
         fw_ack(c, t.function, 0, 0);
-        info(c);
+        if (m->v[0] == 0)
+            info(c);
+        else
+            board(c);
         return;
     case PM_PARAM_SAVE:
         param_save(c, t.function);

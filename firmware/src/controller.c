@@ -11,7 +11,16 @@
 
 static bool config_runs(const fw_config *cfg)
 {
-    return cfg->node != 0 && cfg->node <= PROTO_NODE_MASK && fw_rates_run((fw_rates){cfg->step_hz, cfg->segment_hz});
+    return cfg->node <= PROTO_NODE_MASK && fw_rates_run((fw_rates){cfg->step_hz, cfg->segment_hz});
+}
+
+void fw_params_stored(const hal_storage *storage, fw_param_set *s)
+{
+    fw_params_default(s);
+    uint8_t buf[256];
+    const int n = storage->load(storage->ctx, buf, sizeof buf);
+    if (n > 0)
+        fw_params_deserialize(s, buf, (size_t)n); /* a bad record leaves the defaults */
 }
 
 fw_controller *fw_init(fw_controller_mem *mem, const fw_hal *hal, const fw_config *cfg)
@@ -26,11 +35,7 @@ fw_controller *fw_init(fw_controller_mem *mem, const fw_hal *hal, const fw_confi
     atomic_init(&c->sh.estop_request, false);
 
     fw_param_set s;
-    fw_params_default(&s);
-    uint8_t buf[256];
-    const int n = hal->storage.load(hal->storage.ctx, buf, sizeof buf);
-    if (n > 0)
-        fw_params_deserialize(&s, buf, (size_t)n); /* a bad record leaves the defaults */
+    fw_params_stored(&hal->storage, &s);
     static fw_prepared_params p; /* large, and fw_init runs before anything else: off the stack */
     if (fw_params_prepare(c, &s, &p) != FW_RULE_NONE || fw_params_adopt(c, &p) != FW_RULE_NONE) {
         fw_params_default(&s);
@@ -38,6 +43,10 @@ fw_controller *fw_init(fw_controller_mem *mem, const fw_hal *hal, const fw_confi
             return NULL;
     }
     c->th.params = p.s;
+    /* The id it answers on until the next start: a PARAM_SET of node changes the stored value
+     * only (docs/controller.md). */
+    if (c->cfg.node == 0)
+        c->cfg.node = (uint8_t)p.s.v[FP_NODE];
     c->th.geom = p.g;
     c->th.lim = p.lim;
     fw_traj_queue_start(&c->tick.traj, c->tick.geom.home_pose);

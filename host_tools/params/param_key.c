@@ -7,7 +7,7 @@
 
 
 /* Micro-units on the wire and their SI unit; any other wire unit (ms, ns, kbit/s, 1/m, 1/s) is
- * already the unit people write, one raw unit apiece. */
+ * already the unit people write, one raw unit apiece, and "1" (a plain number) is written bare. */
 static const struct {
     const char *wire, *si;
 } micro_units[] = {
@@ -22,6 +22,8 @@ void param_si_key(int id, param_key *k)
     k->id = id;
     k->per_unit = 1.0;
     k->unit = wire;
+    if (!strcmp(wire, "1")) /* a plain number (node, enable_level): no unit to write */
+        k->unit = "";
     for (size_t i = 0; i < sizeof micro_units / sizeof micro_units[0]; ++i)
         if (!strcmp(wire, micro_units[i].wire)) {
             k->per_unit = 1e6;

@@ -37,7 +37,10 @@ static void intro(FILE *out)
                  "little-endian; every message has one fixed length. A frame of the wrong length, an unknown\n"
                  "function, a field outside its range or a command the state does not accept is answered with\n"
                  "`REJECT` naming the reason, and changes nothing. The states, what moves the controller from\n"
-                 "one to another and what each command does in each are in [controller.md](controller.md).\n\n");
+                 "one to another and what each command does in each are in [controller.md](controller.md).\n"
+                 "A controller's node id is its parameter `node`, taken at start-up (below). A host finds the\n"
+                 "controllers on a bus by sending `INFO_GET` pages 0 and 1 to each node 1..15 and reading who\n"
+                 "answers with `INFO` and `BOARD` (`tsectl scan`, `tse.can.scan`).\n\n");
     fprintf(out, "A pose is staged in `POSE_A`, `POSE_B`, `POSE_C` under one sequence number and applied by a\n"
                  "commit (`MOVE_COMMIT` or `TRAJ_COMMIT`) carrying the same number: only when all three parts of\n"
                  "that number arrived (in any order), and only when the number is newer than the last accepted\n"
@@ -140,8 +143,11 @@ static void parameters(FILE *out)
                  "rate) before it replaces the old one, and the drivers' timing is programmed at once. A set\n"
                  "refused as a whole is answered `param_set` with the parameter set in `field` and the rule it\n"
                  "breaks in `where` (\"param_set rule\" above).\n"
-                 "`can_kbps` is only stored: the board applies it at start-up, so it takes effect after\n"
-                 "`PARAM_SAVE` and a restart.\n\n"
+                 "`can_kbps`, `node` and `enable_level` are only stored: the board applies them at start-up\n"
+                 "(tse-sim takes `node` unless `--node` overrides it), so they take effect after `PARAM_SAVE`\n"
+                 "and a restart. Until then `PARAM_GET` shows the value stored, and a controller whose `node` was\n"
+                 "set keeps answering on the id it started with (its `PARAM_VALUE` too); `tsectl node set`\n"
+                 "does the set and the save. A unit of 1 is a plain number (an id, a code).\n\n"
                  "| id | name | unit | min | max | default | meaning |\n|---|---|---|---|---|---|---|\n");
     for (int i = 0; i < FP_COUNT; ++i) {
         const fw_param_def *p = &fw_param_table[i];

@@ -25,6 +25,10 @@ static void put_exact(FILE *f, double x)
  * the others ("1/m", "ms", "kbit/s") are already what the name says. */
 static double si_scale(const char *unit, const char **si_unit)
 {
+    if (!strcmp(unit, "1")) { /* a plain number (node, enable_level) */
+        *si_unit = "";
+        return 1.0;
+    }
     if (!strcmp(unit, "ppm")) {
         *si_unit = "";
         return 1e-6;

@@ -1,6 +1,6 @@
 /* tse-sim: the controller firmware on Linux SocketCAN, driving a simulated plant.
  *
- *   tse-sim --iface vcan0 --node N [--params FILE] [--start S] [--fault SPEC]
+ *   tse-sim --iface vcan0 [--node N] [--params FILE] [--start S] [--fault SPEC]
  *           [--step-hz HZ] [--segment-hz HZ]
  *   tse-sim --write-params FILE
  *   tse-sim --version
@@ -212,10 +212,12 @@ static int usage(const char *why)
 {
     fprintf(stderr,
             "tse-sim: %s\n"
-            "usage: tse-sim --iface IFACE --node N [--params FILE] [--start S] [--fault SPEC]\n"
+            "usage: tse-sim --iface IFACE [--node N] [--params FILE] [--start S] [--fault SPEC]\n"
             "               [--step-hz HZ] [--segment-hz HZ]\n"
             "       tse-sim --write-params FILE\n"
             "       tse-sim --version\n"
+            "  --node N             the CAN node id, 1..15, over the parameter `node` (which a\n"
+            "                       PARAM_SET and PARAM_SAVE change for the next start)\n"
             "  --params FILE        the controller's parameters, as 'name = value' text in SI units\n"
             "                       (m, rad, m/s, ...; or as the name says: _ms, _ns, _kbps, _deg);\n"
             "                       names left out keep their defaults; a file that cannot be read\n"
@@ -321,8 +323,8 @@ int main(int argc, char **argv)
                 (long)proto_table[PM_INFO].fields[4].max);
         return usage("bad --step-hz or --segment-hz");
     }
-    if (!iface || node < 0)
-        return usage("--iface and --node are needed");
+    if (!iface)
+        return usage("--iface is needed");
 
     static sim s;
     static sim_param_store store;
@@ -352,7 +354,10 @@ int main(int argc, char **argv)
     }
     drives = hal.stepper;
     hal.stepper.enable = enable_after_step;
-    const fw_config cfg = {(uint8_t)node, rates.segment_hz, rates.step_hz, await_tick, &ticker};
+    /* Without --node, the controller's node parameter (from --params, as saved) gives the id, as on
+     * the board; a PARAM_SET of node takes effect at the next start. */
+    const fw_config cfg = {node > 0 ? (uint8_t)node : 0u, rates.segment_hz, rates.step_hz, await_tick, &ticker,
+                           "tse-sim"};
     s.fw = fw_init(&s.fw_mem, &hal, &cfg);
     if (!s.fw) {
         /* The node and the rates were checked: not even the default set runs at these rates. */
@@ -374,6 +379,7 @@ int main(int argc, char **argv)
                 params, rates.step_hz, rates.segment_hz);
         return 2;
     }
+    node = fw_config_of(s.fw)->node;
     if (posix_can_open(&can, iface, (uint8_t)node) != 0) {
         fprintf(stderr, "tse-sim: cannot open CAN interface %s: %s\n", iface, strerror(errno));
         return 1;

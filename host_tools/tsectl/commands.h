@@ -12,6 +12,7 @@ typedef struct {
     int (*check)(int argc, char **argv, int *done);
     int (*run)(tlink *l, int argc, char **argv);
     int heartbeat; /* send host heartbeats while it runs */
+    int any_node;  /* runs without --node (a look over the whole bus) */
 } tsectl_command;
 
 extern const tsectl_command tsectl_commands[];
@@ -48,5 +49,10 @@ int run_trajectory(tlink *l, int argc, char **argv);
 
 int check_path(int argc, char **argv, int *done);
 int run_path(tlink *l, int argc, char **argv);
+
+int check_scan(int argc, char **argv, int *done);
+int run_scan(tlink *l, int argc, char **argv);
+int check_node(int argc, char **argv, int *done);
+int run_node(tlink *l, int argc, char **argv);
 
 #endif

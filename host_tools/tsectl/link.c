@@ -76,10 +76,27 @@ void link_close(tlink *l)
     l->fd = -1;
 }
 
+int link_listen_any(tlink *l, const proto_msg *msgs, int n)
+{
+    struct can_filter f[PM_COUNT];
+    if (n > PM_COUNT)
+        return -1;
+    for (int i = 0; i < n; ++i) /* the function's bits, any node's */
+        f[i] = (struct can_filter){(canid_t)(proto_table[msgs[i]].function << PROTO_NODE_BITS),
+                                   CAN_EFF_FLAG | CAN_RTR_FLAG | (CAN_SFF_MASK & ~PROTO_NODE_MASK)};
+    l->any_node = true;
+    return setsockopt(l->fd, SOL_CAN_RAW, CAN_RAW_FILTER, f, (socklen_t)(n * (int)sizeof f[0]));
+}
+
 int link_send(tlink *l, proto_msg msg, const int32_t *values)
 {
+    return link_send_to(l, l->node, msg, values);
+}
+
+int link_send_to(tlink *l, uint8_t node, proto_msg msg, const int32_t *values)
+{
     hal_can_frame f;
-    if (proto_encode_values(msg, l->node, values, &f) != 0)
+    if (proto_encode_values(msg, node, values, &f) != 0)
         return -1;
     struct can_frame fr;
     memset(&fr, 0, sizeof fr);
@@ -136,7 +153,9 @@ int link_recv(tlink *l, proto_message *m, int timeout_ms)
         f.id = (uint16_t)(fr.can_id & CAN_SFF_MASK);
         f.len = fr.can_dlc;
         memcpy(f.data, fr.data, 8);
-        if (proto_decode(&f, PROTO_TO_HOST, m).reason == FW_REASON_NONE && m->node == l->node) {
+        if (proto_decode(&f, PROTO_TO_HOST, m).reason == FW_REASON_NONE && (l->any_node || m->node == l->node)) {
+            if (l->any_node)
+                return 1;
             if (m->msg == PM_STATUS)
                 note_status(l, (uint16_t)m->v[6]);
             if (m->msg == PM_TRAJ_END) {

@@ -19,6 +19,8 @@ typedef struct {
     uint64_t other_heartbeat_us; /* when another host's HOST_HEARTBEAT to the node was last seen (0: never) */
     status_order statuses;       /* the node's STATUS counters (two controllers on one node id?) */
     bool twin_warned;            /* the warning of two controllers on one node id was given */
+    /* link_recv takes any node's frames, not only the node's (a scan: link_listen_any). */
+    bool any_node;
     /* The newest TRAJ_END read, whoever read it (a wait for rest reads on past it). */
     proto_message traj_end;
     bool traj_end_seen;
@@ -35,6 +37,13 @@ uint64_t link_now_us(void);
 
 /* Sends a message to the node.  Returns 0 or -1. */
 int link_send(tlink *l, proto_msg msg, const int32_t *values);
+/* The same to another node. */
+int link_send_to(tlink *l, uint8_t node, proto_msg msg, const int32_t *values);
+
+/* The socket's filter on messages msgs[0..n-1] of every node, and link_recv taking any node's
+ * (m->node says which), for a look over the whole bus; link_telemetry(l, false) and any_node =
+ * false go back to the node alone.  Returns 0 or -1. */
+int link_listen_any(tlink *l, const proto_msg *msgs, int n);
 
 /* Waits up to timeout_ms for a frame from the node that decodes as a host-bound message.
  * Returns 1 with *m filled, 0 on timeout, -1 on an error.  Meanwhile it notes another host's

@@ -88,31 +88,31 @@ static const char *const params_help =
     "save              store the set in the controller's non-volatile memory";
 
 const tsectl_command tsectl_commands[] = {
-    {"enable", "enable", "Energise the drives (from disabled).", check_none, run_enable, 1},
+    {"enable", "enable", "Energise the drives (from disabled).", check_none, run_enable, 1, 0},
     {"disable", "disable", "De-energise the drives (only at rest); the slides keep their zero.", check_none,
-     run_disable, 1},
+     run_disable, 1, 0},
     {"home", "home [--wait]",
      "Find the homing switches, then go to the home pose.  --wait follows it to rest (also when a homing\n"
      "is already running: it waits for that one).\n"
      "Ctrl-C (or SIGTERM) while it waits stops the robot (STOP), waits until it is at rest and exits 130;\n"
      "a second Ctrl-C meanwhile sends ESTOP.",
-     check_flags, run_home, 1},
+     check_flags, run_home, 1, 0},
     {"clear", "clear", "Leave fault or e-stop (the e-stop input must be closed); the drives stay off.", check_none,
-     run_clear, 1},
+     run_clear, 1, 0},
     {"stop", "stop [--wait]",
      "Controlled stop along the path; drops the trajectory queue.  --wait follows it to rest; Ctrl-C\n"
      "meanwhile sends STOP again, a second Ctrl-C sends ESTOP.",
-     check_flags, run_stop, 1},
-    {"estop", "estop", "Emergency stop: stepping ends at once; latched until cleared.", check_none, run_estop, 0},
+     check_flags, run_stop, 1, 0},
+    {"estop", "estop", "Emergency stop: stepping ends at once; latched until cleared.", check_none, run_estop, 0, 0},
     {"move", "move X Y Z ROLL PITCH YAW [--duration S | --speed V] [--wait]",
      "Move the plate straight to a pose (metres, radians; roll about X first, yaw about Z last) in S\n"
      "seconds (default 2) or at plate speed V m/s; the controller stretches it to its limits and\n"
      "validates the whole path first.  --wait follows it to rest with progress.\n"
      "Ctrl-C (or SIGTERM) while it waits stops the robot (STOP), waits until it is at rest and exits 130;\n"
      "a second Ctrl-C meanwhile sends ESTOP.",
-     check_move, run_move, 1},
+     check_move, run_move, 1, 0},
     {"status", "status [--json]", "One STATUS: state, fault, homing, drives, queue, and the plate pose and slides.",
-     check_json, run_status, 1},
+     check_json, run_status, 1, 0},
     {"info", "info [--json]",
      "What the controller is (INFO): its firmware's version and the rates it runs at, step interrupts and\n"
      "control segments per second.  tsectl reads these before it judges anything by them (a trajectory or\n"
@@ -120,17 +120,27 @@ const tsectl_command tsectl_commands[] = {
      "than INFO answers INFO_GET 'unknown': 'info' then exits 3, the others judge at the built-in rates\n"
      "(200000 Hz step interrupts, 1000 Hz control segments), which every such firmware ran at, and say\n"
      "so.",
-     check_json, run_info, 1},
+     check_json, run_info, 1, 0},
     {"watch", "watch [--count N]", "Live telemetry: state, plate pose, slides (N STATUS lines, or until Ctrl-C).",
-     check_watch, run_watch, 1},
-    {"params", "params list | get NAME | set NAME VALUE | dump [FILE] | save", params_help, check_params, run_params, 1},
-    {"trajectory", "trajectory FILE", traj_help, check_trajectory, run_trajectory, 1},
+     check_watch, run_watch, 1, 0},
+    {"params", "params list | get NAME | set NAME VALUE | dump [FILE] | save", params_help, check_params, run_params, 1, 0},
+    {"trajectory", "trajectory FILE", traj_help, check_trajectory, run_trajectory, 1, 0},
     {"path", "path WAYPOINTS.csv [--blend M] [--period S] [--jerk J|controller] [--dry-run] [--plot FILE.png]",
      path_help, check_path,
-     run_path, 1},
+     run_path, 1, 0},
+    {"scan", "scan",
+     "Find the controllers on the bus: INFO_GET (pages 0 and 1) to every node id 1..15, then a table of\n"
+     "every node that answered within --timeout (default 2000 ms): its id, firmware version, board and\n"
+     "rates.  Needs no --node.  Exits 4 when no controller answered; warns when two answer on one id.",
+     check_scan, run_scan, 0, 1},
+    {"node", "node set N",
+     "Change the controller's node id to N (1..15): PARAM_SET of the parameter node, then PARAM_SAVE.\n"
+     "It takes effect when the controller restarts (power cycle or reset); until then it answers on its\n"
+     "current id.  Refused (exit 3, nothing changed) when a controller already answers on N.",
+     check_node, run_node, 1, 0},
     {"heartbeat", "heartbeat", "Send the host heartbeat every 100 ms until interrupted (the controller's watchdog\n"
                                 "stops the robot after watchdog_ms of silence while the drives are on).",
-     check_none, run_heartbeat, 1},
+     check_none, run_heartbeat, 1, 0},
 };
 const int tsectl_command_count = (int)(sizeof tsectl_commands / sizeof tsectl_commands[0]);
 
@@ -160,7 +170,8 @@ int usage_error(const char *cmd, const char *what, const char *arg)
                 c = &tsectl_commands[i];
     ctl_error("%s%s%s%s%s", c ? c->name : "", c ? ": " : "", what, arg ? ": " : "", arg ? arg : "");
     if (c)
-        fprintf(stderr, "usage: tsectl --iface IF --node N %s   (tsectl %s --help)\n", c->synopsis, c->name);
+        fprintf(stderr, "usage: tsectl --iface IF %s%s   (tsectl %s --help)\n", c->any_node ? "" : "--node N ",
+                c->synopsis, c->name);
     else
         fprintf(stderr, "(try 'tsectl --help')\n");
     return EXIT_USAGE;
@@ -234,14 +245,15 @@ int main(int argc, char **argv)
     /* Help needs no bus. */
     for (int k = 0; k < nargs; ++k)
         if (is_help(args[k]) && strcmp(args[k], "help") != 0) {
-            printf("usage: tsectl --iface IF --node N %s\n\n%s\n", current->synopsis, current->help);
+            printf("usage: tsectl --iface IF %s%s\n\n%s\n", current->any_node ? "" : "--node N ", current->synopsis,
+                   current->help);
             return EXIT_OK;
         }
     int done = 0;
     const int bad = current->check(nargs, args, &done);
     if (bad != EXIT_OK || done)
         return bad;
-    if (!iface || node < 0)
+    if (!iface || (node < 0 && !current->any_node))
         return usage_error(NULL, !iface ? "--iface IF is needed for this command" : "--node N is needed for this command",
                            NULL);
 
@@ -251,7 +263,7 @@ int main(int argc, char **argv)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
     tlink l;
-    if (link_open(&l, iface, (uint8_t)node) != 0) {
+    if (link_open(&l, iface, node < 0 ? PROTO_BROADCAST : (uint8_t)node) != 0) {
         ctl_error("cannot open CAN interface %s: %s", iface, strerror(errno));
         return EXIT_BUS;
     }

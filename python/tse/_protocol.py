@@ -194,9 +194,9 @@ MESSAGES = {
          "0x45564153, the ASCII bytes S, A, V, E in wire order"),
     ), "Store the parameter set in non-volatile memory."),
     "INFO_GET": (0x12, "to_controller", 1, (
-        ("page", "u8", 0, 0, 0, "", 1.0, None,
-         "what to report: 0, the firmware's version and the controller's rates (INFO); other pages are kept for later answers (a board's identity) and refused range until a firmware has them"),
-    ), "Ask what the controller is: acknowledged, then answered by the page's message (page 0: INFO). Accepted in every state; changes nothing."),
+        ("page", "u8", 0, 0, 1, "", 1.0, None,
+         "what to report: 0, the firmware's version and the controller's rates (INFO); 1, the board's name (BOARD); other pages are kept for later answers and refused range until a firmware has them (a firmware older than BOARD refuses page 1 so)"),
+    ), "Ask what the controller is: acknowledged, then answered by the page's message (page 0: INFO, page 1: BOARD). Accepted in every state; changes nothing."),
     "STATUS": (0x20, "to_host", 8, (
         ("state", "u8", 0, 0, 7, "", 1.0, "state",
          "controller state"),
@@ -289,6 +289,24 @@ MESSAGES = {
         ("segment_hz", "u16", 6, 1, 65535, "Hz", 1.0, None,
          "the control segments per second it runs (a trajectory's rows and a move are judged over them)"),
     ), "Answer to INFO_GET page 0, after its ACK: what the controller runs, so that a host judges a path or a parameter set at the controller's own rates (the slide speed its step generator allows, the segments a slide's acceleration is measured over) rather than assumed ones."),
+    "BOARD": (0x2B, "to_host", 8, (
+        ("c0", "u8", 0, 0, 127, "", 1.0, None,
+         "the board's name: its first character"),
+        ("c1", "u8", 1, 0, 127, "", 1.0, None,
+         "its second character"),
+        ("c2", "u8", 2, 0, 127, "", 1.0, None,
+         "its third character"),
+        ("c3", "u8", 3, 0, 127, "", 1.0, None,
+         "its fourth character"),
+        ("c4", "u8", 4, 0, 127, "", 1.0, None,
+         "its fifth character"),
+        ("c5", "u8", 5, 0, 127, "", 1.0, None,
+         "its sixth character"),
+        ("c6", "u8", 6, 0, 127, "", 1.0, None,
+         "its seventh character"),
+        ("c7", "u8", 7, 0, 127, "", 1.0, None,
+         "its eighth character"),
+    ), "Answer to INFO_GET page 1, after its ACK: the board the firmware was built for (a board image's name, such as gen_f405; tse-sim for the simulator), up to 8 ASCII characters, the rest NUL (0): a name of 8 characters has none."),
 }
 
 # Parameter id: (name, wire unit, min raw, max raw, default raw, doc).
@@ -328,6 +346,8 @@ PARAMS = (
     ("dir_setup_ns", "ns", 0, 1000000, 5000, "DIR stable before a STEP edge (rounded up to whole step interrupts, at least one)"),
     ("can_kbps", "kbit/s", 125, 1000, 500, "CAN bit rate: 125, 250, 500 or 1000; the board applies it at start-up, so it takes effect after PARAM_SAVE and a restart"),
     ("traj_lead", "us", 0, 10000000, 200000, "streamed trajectories: the path the controller holds before the clock of the first row starts (or the last row, or a full queue); the plate waits at rest until then. 0.2 s covers host stalls (scheduling, garbage collection) of tens of ms several times over; a row takes about 1 ms on the bus"),
+    ("node", "1", 1, 15, 1, "CAN node id (1..15); taken at start-up, so a change takes effect after PARAM_SAVE and a restart: until then the controller keeps answering on the id it started with"),
+    ("enable_level", "1", 0, 2, 0, "ENABLE output's active level: 0 the board's own, 1 active high, 2 active low; taken at start-up (after PARAM_SAVE and a restart)"),
 )
 
 # Spelling: (parameter id, raw units per unit of this spelling, unit). A name without a
@@ -371,4 +391,6 @@ PARAM_SPELLINGS = {
     "dir_setup_ns": (32, 1.0, "ns"),
     "can_kbps": (33, 1.0, "kbit/s"),
     "traj_lead": (34, 1e+06, "s"),
+    "node": (35, 1.0, ""),
+    "enable_level": (36, 1.0, ""),
 }

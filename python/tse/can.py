@@ -34,8 +34,8 @@ _pycan = need("can", "python3-can", "tse.can")
 
 from . import _protocol as _P
 
-__all__ = ["Controller", "Status", "Telemetry", "MoveInfo", "Streamed", "Info", "TseError", "Rejected", "Fault",
-           "Ended", "Timeout", "encode", "decode", "reject_words"]
+__all__ = ["Controller", "Status", "Telemetry", "MoveInfo", "Streamed", "Info", "Found", "TseError", "Rejected",
+           "Fault", "Ended", "Timeout", "encode", "decode", "reject_words", "scan"]
 
 # --- The codec, driven by the table --------------------------------------------------------------
 
@@ -142,6 +142,11 @@ Info = namedtuple("Info", "version step_hz segment_hz")
 Info.__doc__ = """What the controller is (its INFO): version, its firmware's (major, minor, patch), and the rates it
 runs at, step_hz step interrupts and segment_hz control segments per second, which its paths are
 judged at (the slide speed its step generator allows, the segments acceleration is measured over)."""
+
+Found = namedtuple("Found", "node version board step_hz segment_hz")
+Found.__doc__ = """A controller scan() found: its node id, its firmware's version (major, minor, patch), its board's
+name (BOARD, INFO_GET page 1) and its rates (INFO).  version and the rates are None from a firmware
+older than INFO; board is None from one older than BOARD (or when its answer did not come)."""
 
 Streamed = namedtuple("Streamed", "rows seconds rows_per_s fill_rows_per_s")
 Streamed.__doc__ = """What trajectory() returns: the rows streamed, the seconds from the first row sent to the last
@@ -338,6 +343,64 @@ def _raw_socketcan(bus):
     if isinstance(bus, SocketcanBus) and bus.channel:
         return bus.socket.send, build_can_frame
     return None, None
+
+
+# --- The controllers on a bus ---------------------------------------------------------------------
+
+def _scan_take(e, name, v):
+    """One answer from a node into its entry (a dict)."""
+    if name == "INFO":
+        e["infos"] += 1
+        e["version"], e["rates"] = (v["major"], v["minor"], v["patch"]), (v["step_hz"], v["segment_hz"])
+    elif name == "BOARD":
+        chars = bytes(v[f[0]] for f in _P.MESSAGES["BOARD"][3])
+        e["board"] = chars.split(b"\0", 1)[0].decode("ascii")
+    elif name == "REJECT" and v["function"] == _P.MESSAGES["INFO_GET"][0]:
+        e["older"] = True  # unknown: older than INFO; range (page 1): older than BOARD
+
+
+def scan(bus, timeout=2.0, interface="socketcan"):
+    """The controllers on a bus, as `tsectl scan` finds them: INFO_GET pages 0 and 1 to every node id
+    1..15, then every answer read for `timeout` seconds.  bus: a python-can bus the caller owns, or
+    a channel name (opened with `interface`, closed after).  Returns a list of Found, by node id
+    (empty when none answered); a node that answers INFO twice (two controllers on one id) is
+    warned about.  Run it while no Controller reads the same bus object."""
+    if not timeout > 0:
+        raise ValueError(f"timeout {timeout!r} is not a positive number of seconds")
+    own = isinstance(bus, str)
+    if own:
+        try:
+            bus = _pycan.Bus(channel=bus, interface=interface)
+        except (OSError, _pycan.CanError, ValueError, ImportError) as e:
+            raise TseError(f"cannot open CAN channel {bus!r} ({interface}): {e}") from e
+    try:
+        for node in range(1, _P.NODE_MASK + 1):
+            for page in (0, 1):
+                bus.send(encode("INFO_GET", node, page=page), timeout=timeout)
+        found = {}
+        end = time.monotonic() + timeout
+        while (left := end - time.monotonic()) > 0:
+            frame = bus.recv(left)
+            if frame is None:
+                break
+            try:
+                name, node, v = decode(frame)
+            except DecodeError:
+                continue
+            if node and name in ("INFO", "BOARD", "REJECT", "ACK", "STATUS"):
+                _scan_take(found.setdefault(node, {"infos": 0}), name, v)
+    finally:
+        if own:
+            bus.shutdown()
+    out = []
+    for node in sorted(found):
+        e = found[node]
+        if e["infos"] > 1:
+            warnings.warn(f"node {node} answered INFO_GET {e['infos']} times: two controllers share node id {node}",
+                          stacklevel=2)
+        rates = e.get("rates", (None, None))
+        out.append(Found(node, e.get("version"), e.get("board"), rates[0], rates[1]))
+    return out
 
 
 # --- The controller ------------------------------------------------------------------------------
@@ -682,6 +745,18 @@ class Controller:
                         return Info((f["major"], f["minor"], f["patch"]), f["step_hz"], f["segment_hz"])
                 return None
             return self._wait_for(pick, self.timeout, "INFO")
+
+    def set_node(self, node):
+        """Changes the controller's node id to `node` (1..15): PARAM_SET of the parameter node, then
+        PARAM_SAVE, as `tsectl node set` does.  It takes effect when the controller restarts; until
+        then it answers on its current id (this object keeps talking to it there).  Returns node.
+        ValueError (nothing sent) outside 1..15; Rejected when the controller refuses."""
+        lo, hi = _P.PARAMS[_P.PARAM_SPELLINGS["node"][0]][2:4]
+        if isinstance(node, bool) or not isinstance(node, int) or not lo <= node <= hi:
+            raise ValueError(f"node {node!r} is not a node id: a whole number {lo}..{hi} (nothing sent)")
+        self.params.set("node", node)
+        self.params.save()
+        return node
 
     def _rates(self):
         """(step_hz, segment_hz) to judge this controller's paths at: its INFO's; from a controller that

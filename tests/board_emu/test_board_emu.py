@@ -365,6 +365,58 @@ class BoardEmu(unittest.TestCase):
         c2 = self.controller(em2)
         self.assertEqual(c2.params.get("homing_speed"), 0.025)
 
+    def test_node_and_board(self):
+        """Issue 26 pt 4 (docs/board.md, "Node id and ENABLE level"): the image names its board
+        (BOARD: "gen_f405", board/CMakeLists.txt's TSE_BOARD_NAME) and scan finds it at node 1;
+        set_node(5) stores and saves the id, the board answering on node 1 until its power cycle,
+        then on node 5 alone, the boot line saying so.  (A scan waits its whole timeout.)"""
+        em = self.start()
+        bus = em.bus()
+        self.addCleanup(bus.shutdown)
+        self.wait_virtual(em, 0.5)  # the board on the bus
+        self.assertEqual(tc.scan(bus, timeout=10.0), [tc.Found(1, project_version(), "gen_f405", 200000, 1000)])
+        c = tc.Controller(bus=bus, node=NODE, timeout=60.0)
+        self.assertEqual(c.set_node(5), 5)
+        self.assertEqual(c.params.get("node"), 5)  # stored; still answering on node 1
+        c.close()  # (its reader leaves the bus to scan)
+        em.rig("reset")
+        self.wait_virtual(em, 1.0)  # the board back on the bus
+        found = tc.scan(bus, timeout=10.0)
+        self.assertEqual(found, [tc.Found(5, project_version(), "gen_f405", 200000, 1000)])
+        c5 = tc.Controller(bus=bus, node=5, timeout=60.0)
+        self.addCleanup(c5.close)
+        self.assertEqual((c5.status().state, c5.status().fault), ("disabled", "none"))
+        self.assertEqual(c5.params.get("node"), 5)
+        lines = self.wait_virtual(em, 1.0, lambda e: [x for x in self.boot_lines(e) if "node 5" in x], "boot line")
+        self.assertEqual(lines, ["tse-fw node 5: boot faults 0x00"])
+
+    def test_enable_level(self):
+        """enable_level (docs/board.md, "Node id and ENABLE level"): ENABLE (PC12, GPIOC's ODR bit 12,
+        read through the gdbstub) is low while disabled at the board's own level (active high);
+        with enable_level 2 (active low) saved and a power cycle, it is high while disabled and low
+        once enabled."""
+        if not (shutil.which("gdb-multiarch") or shutil.which("arm-none-eabi-gdb")):
+            self.skipTest("gdb-multiarch not installed (scripts/setup.sh)")
+        port = 20000 + (os.getpid() + 19) % 20000
+        em = self.start(extra=("-gdb", f"tcp:127.0.0.1:{port}"))
+        c = self.controller(em)
+        gpioc_odr = 0x40020800 + 0x14  # RM0090 8.4.6, GPIOC at 0x40020800 (2.3)
+
+        def enable_pin():
+            out = self.gdb_run(port, f"print (*(unsigned int *){gpioc_odr:#x} >> 12) & 1")
+            return int([line for line in out.splitlines() if line.startswith("$")][0].split("=")[1])
+        self.assertEqual(enable_pin(), 0, "active high: low while disabled")
+        c.params.set("enable_level", 2)
+        c.params.save()
+        self.assertEqual(enable_pin(), 0, "taken at start-up only")
+        self.restart_after(em, c, lambda: em.rig("reset"))
+        self.assertEqual(c.params.get("enable_level"), 2)
+        self.assertEqual(enable_pin(), 1, "active low: high while disabled")
+        c.enable()
+        self.assertEqual(enable_pin(), 0, "active low: low once enabled")
+        c.disable()
+        self.assertEqual(enable_pin(), 1)
+
     def test_param_save_cut_by_power_loss(self):
         """The power goes as a flash operation of a PARAM_SAVE starts (the rig's cutflash), at
         the first, second, middle, next-to-last and last operation of a save: after the restart

@@ -96,4 +96,20 @@ check "the same file at --step-hz 100000: taken (then no CAN: exit 1)" test $rc 
 check "a 6 us pulse at --step-hz 100000: refused with that rate's figures" \
   test $rc -eq 2 -a -n "$(grep 'pulse.params:1: step_pulse_ns = 6000 ns leaves 4000 ns low before the same slide.s next step, which may come 10000 ns later (1 step interrupt at 100 kHz' "$tmp/err")"
 
+# The node id (issue 26 pt 4): --node overrides the parameter `node`, which a file may set; without
+# either, node 1 (the default).  A node outside 1..15 in the file or on the line is refused.
+"$T" --iface nosuchcan0 >"$tmp/out" 2>"$tmp/err"; rc=$?
+check "without --node tse-sim starts (then no CAN: exit 1)" test $rc -eq 1
+check "... having got as far as the interface" grep -q "cannot open CAN interface nosuchcan0" "$tmp/err"
+printf 'node = 16\n' >"$tmp/node16.params"
+"$T" --iface nosuchcan0 --params "$tmp/node16.params" >"$tmp/out" 2>"$tmp/err"; rc=$?
+check "node = 16 in the file: refused (exit 2), naming the range" \
+  test $rc -eq 2 -a -n "$(grep 'node16.params:1: node = 16 is outside 1..15' "$tmp/err")"
+printf 'enable_level = 3\n' >"$tmp/level.params"
+"$T" --iface nosuchcan0 --params "$tmp/level.params" >"$tmp/out" 2>"$tmp/err"; rc=$?
+check "enable_level = 3 in the file: refused (exit 2), naming the range" \
+  test $rc -eq 2 -a -n "$(grep 'enable_level = 3 is outside 0..2' "$tmp/err")"
+"$T" --iface nosuchcan0 --node 0 >/dev/null 2>"$tmp/err"; rc=$?
+check "--node 0 is refused (exit 2)" test $rc -eq 2 -a -n "$(grep -- '--node takes 1..15' "$tmp/err")"
+
 check_done

@@ -100,4 +100,23 @@ check "info with an unknown option exits 2 naming it" test $rc -eq 2
 check "the unknown option is named" grep -q -- "--yaml" "$tmp/e"
 "$T" --iface nosuchcan0 --node 1 info --json >/dev/null 2>"$tmp/e"; rc=$?
 check "info --json reaches the bus (exit 1 here)" test $rc -eq 1
+# node set and scan (issue 26 pt 4): an id outside 1..15 refused before the bus, naming the range;
+# scan needs no --node; node set does.
+for bad in 0 16 5x -3 ""; do
+  "$T" --iface nosuchcan0 --node 1 node set "$bad" >/dev/null 2>"$tmp/e"; rc=$?
+  check "node set '$bad' exits 2" test $rc -eq 2
+  check "node set '$bad' names the range" grep -q "is not a node id: a whole number 1..15 (nothing sent)" "$tmp/e"
+done
+"$T" --iface nosuchcan0 --node 1 node set >/dev/null 2>"$tmp/e"; rc=$?
+check "node set without an id exits 2" test $rc -eq 2
+"$T" --iface nosuchcan0 node set 5 >/dev/null 2>"$tmp/e"; rc=$?
+check "node set without --node exits 2 naming it" test $rc -eq 2 -a -n "$(grep -- '--node N is needed' "$tmp/e")"
+"$T" --iface nosuchcan0 --node 1 node set 5 >/dev/null 2>"$tmp/e"; rc=$?
+check "node set 5 reaches the bus (exit 1 here)" test $rc -eq 1
+"$T" --iface nosuchcan0 scan >/dev/null 2>"$tmp/e"; rc=$?
+check "scan needs no --node and reaches the bus (exit 1 here)" test $rc -eq 1
+"$T" --iface nosuchcan0 scan now >/dev/null 2>"$tmp/e"; rc=$?
+check "scan with an argument exits 2" test $rc -eq 2
+"$T" help scan >"$tmp/e" 2>&1
+check "scan help says it needs no --node" grep -q "Needs no --node" "$tmp/e"
 check_done

@@ -29,7 +29,7 @@ void start(void)
 
 void restart(const fw_hal *hal)
 {
-    const fw_config cfg = {1, 1000, 100000, NULL, NULL};
+    const fw_config cfg = {1, 1000, 100000, NULL, NULL, NULL};
     C = fw_init(&C_mem, hal, &cfg);
     assert_non_null(C);
 }

@@ -25,7 +25,7 @@ static void test_defaults_match_controller(void **state)
     static fw_controller_mem mem;
     fw_hal hal;
     fake_hal_init(&f, &hal);
-    const fw_config cfg = {1, SEGMENT_HZ, STEP_HZ, NULL, NULL};
+    const fw_config cfg = {1, SEGMENT_HZ, STEP_HZ, NULL, NULL, NULL};
     const fw_controller *c = fw_init(&mem, &hal, &cfg);
     assert_non_null(c);
 

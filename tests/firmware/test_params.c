@@ -75,7 +75,11 @@ static void test_board_parameters(void **state)
     /* Appended after homing_backoff (ids travel on the wire). */
     assert_int_equal(FP_HOME_SW_1, FP_HOMING_BACKOFF + 1);
     assert_int_equal(FP_TRAJ_LEAD, FP_CAN_KBPS + 1);
-    assert_int_equal(FP_TRAJ_LEAD, FP_COUNT - 1);
+    assert_int_equal(FP_NODE, FP_TRAJ_LEAD + 1);
+    assert_int_equal(FP_ENABLE_LEVEL, FP_NODE + 1);
+    assert_int_equal(FP_ENABLE_LEVEL, FP_COUNT - 1);
+    assert_int_equal(s.v[FP_NODE], 1);         /* the node the board image was built for before */
+    assert_int_equal(s.v[FP_ENABLE_LEVEL], 0); /* the board's own level */
     assert_int_equal(s.v[FP_TRAJ_LEAD], 200000); /* 0.2 s */
     for (int k = 0; k < 6; ++k)
         assert_int_equal(s.v[FP_HOME_SW_1 + k], 200000);
@@ -311,7 +315,7 @@ static void test_older_record(void **state)
     fw_param_set s, back;
     fw_params_default(&s);
     s.v[FP_SLIDE_VMAX] = 120000;
-    const unsigned n = FP_COUNT - 1;
+    const unsigned n = FP_TRAJ_LEAD; /* ids 0 .. traj_lead - 1 */
     uint8_t buf[256];
     size_t len = 0;
     const uint8_t head[6] = {'P', 'E', 'S', 'T', (uint8_t)n, 0};
@@ -325,9 +329,13 @@ static void test_older_record(void **state)
         buf[len++] = (uint8_t)(crc >> (8 * k));
     fw_params_default(&back);
     back.v[FP_TRAJ_LEAD] = 5; /* to see it replaced by the default */
+    back.v[FP_NODE] = 7;      /* (and node, enable_level, appended after it) */
+    back.v[FP_ENABLE_LEVEL] = 2;
     assert_int_equal(fw_params_deserialize(&back, buf, len), 0);
     assert_int_equal(back.v[FP_SLIDE_VMAX], 120000);
     assert_int_equal(back.v[FP_TRAJ_LEAD], fw_param_table[FP_TRAJ_LEAD].def);
+    assert_int_equal(back.v[FP_NODE], 1);
+    assert_int_equal(back.v[FP_ENABLE_LEVEL], 0);
     /* A count this firmware does not know (a newer one's record): refused, nothing changed. */
     buf[4] = (uint8_t)(FP_COUNT + 1);
     const fw_param_set before = back;

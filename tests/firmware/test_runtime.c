@@ -241,7 +241,7 @@ static void test_tick_in_a_thread_of_its_own(void **state)
     fake_hal_init(&F, &hal);
     hal.clock = (hal_clock){NULL, now_us};
     atomic_store(&clock_us, 0);
-    const fw_config cfg = {1, 1000, 100000, await_yield, NULL};
+    const fw_config cfg = {1, 1000, 100000, await_yield, NULL, NULL};
     C = fw_init(&mem, &hal, &cfg);
     assert_non_null(C);
     assert_int_equal(fw_testing_homed_at_home(C), 0);
@@ -318,7 +318,7 @@ static void test_heartbeats_taken_while_waiting(void **state)
     static fw_controller_mem mem;
     fw_hal hal;
     fake_hal_init(&F, &hal);
-    const fw_config cfg = {1, 1000, 100000, await_in_place, NULL};
+    const fw_config cfg = {1, 1000, 100000, await_in_place, NULL, NULL};
     C = fw_init(&mem, &hal, &cfg);
     assert_non_null(C);
     assert_int_equal(fw_testing_homed_at_home(C), 0);

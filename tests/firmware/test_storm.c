@@ -103,7 +103,7 @@ static void test_storm(void **state)
     fake_hal_init(&F, &hal);
     for (int k = 0; k < 6; ++k)
         F.steps[k] = FAKE_SWITCH_AT + 3000; /* just above the homing switches */
-    const fw_config cfg = {1, 1000, 100000, NULL, NULL};
+    const fw_config cfg = {1, 1000, 100000, NULL, NULL, NULL};
     C = fw_init(&C_mem, &hal, &cfg);
     assert_non_null(C);
     unsigned states_seen = 0;

@@ -32,9 +32,9 @@ void rig_boot(sim_rig *r, double start_m)
 #if SIM_RIG_BOARD_TIME
     /* The thread waits for the tick as the board's does: time runs to the next interrupt. */
     bt_stop(); /* fw_init's solves are before the board's time starts */
-    const fw_config cfg = {1, RIG_CONTROL_HZ, RIG_STEP_HZ, bt_await, &r->bt};
+    const fw_config cfg = {1, RIG_CONTROL_HZ, RIG_STEP_HZ, bt_await, &r->bt, NULL};
 #else
-    const fw_config cfg = {1, RIG_CONTROL_HZ, RIG_STEP_HZ, NULL, NULL};
+    const fw_config cfg = {1, RIG_CONTROL_HZ, RIG_STEP_HZ, NULL, NULL, NULL};
 #endif
     r->fw = fw_init(&r->fw_mem, &hal, &cfg);
     assert_non_null(r->fw);

@@ -124,7 +124,7 @@ static void boot(const double s0[6], const int32_t *sw_um)
 {
     fw_hal hal;
     fake_hal_init(&F, &hal);
-    const fw_config cfg = {1, 1000, 100000, NULL, NULL};
+    const fw_config cfg = {1, 1000, 100000, NULL, NULL, NULL};
     /* The plant takes over the stepper and the inputs; the bus, clock and storage stay fake. */
     hal.stepper = plant_stepper(&P);
     hal.inputs = plant_inputs(&P);

@@ -429,7 +429,7 @@ static void boot_and_params(void)
     hal.inputs = (hal_inputs){0, in_limits, in_estop};
     hal.clock = (hal_clock){0, clk_now};
     hal.storage = (hal_storage){0, sto_load, sto_save};
-    const fw_config cfg = {NODE, SEGMENT_HZ, STEP_HZ, NULL, NULL};
+    const fw_config cfg = {NODE, SEGMENT_HZ, STEP_HZ, NULL, NULL, NULL};
     C = fw_init(&C_mem, &hal, &cfg);
     TT_CHECK(C != NULL);
     host.seq = 1;

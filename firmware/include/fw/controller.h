@@ -25,9 +25,15 @@
 #include "fw/stepgen.h"
 #include "fw/types.h"
 
-/* Loads the parameters from storage (defaults if none or corrupt) and enters DISABLED.  Returns
- * the controller (in mem), or NULL for a configuration that cannot run.  Before the ticks start. */
+/* Loads the parameters from storage (defaults if none or corrupt) and enters DISABLED.  A
+ * cfg->node of 0 takes the node id from the set it adopts.  Returns the controller (in mem), or
+ * NULL for a configuration that cannot run.  Before the ticks start. */
 fw_controller *fw_init(fw_controller_mem *mem, const fw_hal *hal, const fw_config *cfg);
+
+/* The set storage holds (the defaults if it holds none, or a record that is not a valid set): what
+ * fw_init starts from, for a platform that applies a parameter before it (the board's ENABLE
+ * level, which its stepper needs before the controller drives it). */
+void fw_params_stored(const hal_storage *storage, fw_param_set *s);
 
 /* A fault the platform detected (the simulator's plant reports FW_FAULT_PLANT, the board
  * FW_FAULT_HARDWARE): a controlled stop if anything moves, then latched, exactly as the

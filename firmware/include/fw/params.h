@@ -48,8 +48,17 @@ typedef enum {
     FP_DIR_SETUP_NS,  /* [ns] DIR stable before a STEP edge */
     FP_CAN_KBPS,      /* [kbit/s] 125, 250, 500 or 1000; applied by the board at start-up */
     FP_TRAJ_LEAD,     /* [us] trajectory held before its clock starts */
+    FP_NODE,          /* CAN node id 1..15; applied by the platform at start-up */
+    FP_ENABLE_LEVEL,  /* fw_enable_level; applied by the board at start-up */
     FP_COUNT
 } fw_param_id;
+
+/* enable_level's values: the ENABLE output's active level (the board maps them at start-up). */
+typedef enum {
+    FW_ENABLE_LEVEL_BOARD = 0, /* the board's own, from its description */
+    FW_ENABLE_LEVEL_HIGH = 1,  /* high = drivers enabled */
+    FW_ENABLE_LEVEL_LOW = 2,   /* low = drivers enabled */
+} fw_enable_level;
 
 /* The controller's parameter that carries kinematic parameter id (TSE_PARAM_L ... TSE_PARAM_NU_MIN):
  * the table keeps the library's order from FP_L, under the library's names. */

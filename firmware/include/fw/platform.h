@@ -31,7 +31,9 @@ typedef struct {
 } fw_hal;
 
 typedef struct {
-    uint8_t node;        /* 1..15 */
+    /* 1..15, or 0: the controller's `node` parameter, as stored (fw_init resolves it, and
+     * fw_config_of then reads the id it answers on until the next start). */
+    uint8_t node;
     uint32_t segment_hz; /* control segments per second (>= 1000 on the board) */
     uint32_t step_hz;    /* step interrupts per second, a multiple of segment_hz */
     /* The control tick in a context of its own, running at once with the thread (the board's
@@ -41,6 +43,9 @@ typedef struct {
      * benchmarks), and the tick's side of a hand-over runs in place. */
     void (*await)(void *ctx);
     void *await_ctx;
+    /* What the board is, up to 8 ASCII characters (INFO_GET page 1, BOARD): the board image's
+     * TSE_BOARD_NAME, "tse-sim" for the simulator.  NULL: an empty name. */
+    const char *board;
 } fw_config;
 
 typedef struct fw_controller fw_controller;

@@ -19,7 +19,7 @@
 #define PROTO_NODE_BITS 4
 #define PROTO_NODE_MASK 0x0Fu
 #define PROTO_BROADCAST 0u
-#define PROTO_MAX_FIELDS 7
+#define PROTO_MAX_FIELDS 8
 
 /* STATUS's flags, one bit each; proto_status_flags names and documents them (docs/protocol.md,
  * the DBC and the Python tables are written from it). */

@@ -49,7 +49,7 @@ void board_pins_init(void)
     for (unsigned k = 0; k < BOARD_SLIDES; ++k) {
         output(d->step[k], false);
         output(d->dir[k], false);
-        output(d->enable[k], !d->enable_active_high);
+        output(d->enable[k], !board_enable_active_high()); /* the drivers disabled */
         input(d->lim[k]);
         input(d->limh[k]);
     }

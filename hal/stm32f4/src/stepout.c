@@ -138,6 +138,7 @@ static void bind(const board_desc *d, int enable_active_high)
 hal_stepper board_stepper_hal_for(const board_desc *d, uint32_t timer_hz, int enable_active_high)
 {
     bind(d, enable_active_high);
+    drive_enable(false); /* inactive at its level at once, before the pin drives (board_pins_init) */
     out.timer_hz = timer_hz;
     TSE_TIM4->CR1 = 0;
     TSE_TIM4->PSC = 0;
@@ -153,6 +154,11 @@ hal_stepper board_stepper_hal_for(const board_desc *d, uint32_t timer_hz, int en
 hal_stepper board_stepper_hal(uint32_t timer_hz, int enable_active_high)
 {
     return board_stepper_hal_for(&tse_board_desc, timer_hz, enable_active_high);
+}
+
+bool board_enable_active_high(void)
+{
+    return out.enables ? out.enable_high : outputs_desc->enable_active_high != 0;
 }
 
 void board_outputs_safe(void)

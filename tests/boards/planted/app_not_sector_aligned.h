@@ -1,6 +1,6 @@
-/* Planted fault (not sector-aligned): generic_f405 with one thing wrong; board_check --planted app_not_sector_aligned must
+/* Planted fault (not sector-aligned): gen_f405 with one thing wrong; board_check --planted app_not_sector_aligned must
  * find it (tests/boards/CMakeLists.txt). */
-#include "../../../hal/stm32f4/boards/generic_f405.h"
+#include "../../../hal/stm32f4/boards/gen_f405.h"
 #undef BOARD_NAME
 #define BOARD_NAME "app_not_sector_aligned"
 #define BOARD_PLANTED_EXPECT "not sector-aligned"

@@ -1,6 +1,6 @@
-/* Planted fault (boot-line TX without its USART alternate function): generic_f405 with one thing wrong; board_check --planted boot_tx_without_af must
+/* Planted fault (boot-line TX without its USART alternate function): gen_f405 with one thing wrong; board_check --planted boot_tx_without_af must
  * find it (tests/boards/CMakeLists.txt). */
-#include "../../../hal/stm32f4/boards/generic_f405.h"
+#include "../../../hal/stm32f4/boards/gen_f405.h"
 #undef BOARD_NAME
 #define BOARD_NAME "boot_tx_without_af"
 #define BOARD_PLANTED_EXPECT "boot-line TX without its USART alternate function"

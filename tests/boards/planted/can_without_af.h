@@ -1,6 +1,6 @@
-/* Planted fault (CAN pin without its alternate function): generic_f405 with one thing wrong; board_check --planted can_without_af must
+/* Planted fault (CAN pin without its alternate function): gen_f405 with one thing wrong; board_check --planted can_without_af must
  * find it (tests/boards/CMakeLists.txt). */
-#include "../../../hal/stm32f4/boards/generic_f405.h"
+#include "../../../hal/stm32f4/boards/gen_f405.h"
 #undef BOARD_NAME
 #define BOARD_NAME "can_without_af"
 #define BOARD_PLANTED_EXPECT "CAN pin without its alternate function"

@@ -1,6 +1,6 @@
-/* Planted fault (parameter log overlaps the application image): generic_f405 with one thing wrong; board_check --planted param_log_overlaps_app must
+/* Planted fault (parameter log overlaps the application image): gen_f405 with one thing wrong; board_check --planted param_log_overlaps_app must
  * find it (tests/boards/CMakeLists.txt). */
-#include "../../../hal/stm32f4/boards/generic_f405.h"
+#include "../../../hal/stm32f4/boards/gen_f405.h"
 #undef BOARD_NAME
 #define BOARD_NAME "param_log_overlaps_app"
 #define BOARD_PLANTED_EXPECT "parameter log overlaps the application image"

@@ -1,6 +1,6 @@
-/* Planted fault (pin not on the package): generic_f405 with one thing wrong; board_check --planted pin_not_on_package must
+/* Planted fault (pin not on the package): gen_f405 with one thing wrong; board_check --planted pin_not_on_package must
  * find it (tests/boards/CMakeLists.txt). */
-#include "../../../hal/stm32f4/boards/generic_f405.h"
+#include "../../../hal/stm32f4/boards/gen_f405.h"
 #undef BOARD_NAME
 #define BOARD_NAME "pin_not_on_package"
 #define BOARD_PLANTED_EXPECT "pin not on the package"

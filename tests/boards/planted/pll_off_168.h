@@ -1,6 +1,6 @@
-/* Planted fault (not 168 and 48): generic_f405 with one thing wrong; board_check --planted pll_off_168 must
+/* Planted fault (not 168 and 48): gen_f405 with one thing wrong; board_check --planted pll_off_168 must
  * find it (tests/boards/CMakeLists.txt). */
-#include "../../../hal/stm32f4/boards/generic_f405.h"
+#include "../../../hal/stm32f4/boards/gen_f405.h"
 #undef BOARD_NAME
 #define BOARD_NAME "pll_off_168"
 #define BOARD_PLANTED_EXPECT "not 168 and 48"

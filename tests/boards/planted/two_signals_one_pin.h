@@ -1,6 +1,6 @@
-/* Planted fault (two signals on one pin): generic_f405 with one thing wrong; board_check --planted two_signals_one_pin must
+/* Planted fault (two signals on one pin): gen_f405 with one thing wrong; board_check --planted two_signals_one_pin must
  * find it (tests/boards/CMakeLists.txt). */
-#include "../../../hal/stm32f4/boards/generic_f405.h"
+#include "../../../hal/stm32f4/boards/gen_f405.h"
 #undef BOARD_NAME
 #define BOARD_NAME "two_signals_one_pin"
 #define BOARD_PLANTED_EXPECT "two signals on one pin"

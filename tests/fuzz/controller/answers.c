@@ -258,15 +258,24 @@ static void judge_params(oracle_model *o, rig *r, const oracle_outputs *out, boo
     plant_check_reset(r, &o->params);
 }
 
-/* INFO_GET (page 0, the only one the table takes): its ACK, then INFO at once with the project's
- * version (TSE_EXPECT_VERSION, as CMake has it) and the rates the rig configured the controller
- * with.  That it changed nothing is judged with the refusals' snapshot (oracle.c). */
-static void judge_info(const rig *r, const oracle_outputs *out)
+/* INFO_GET (pages 0 and 1, the ones the table takes): its ACK, then at once, for page 0, INFO with
+ * the project's version (TSE_EXPECT_VERSION, as CMake has it) and the rates the rig configured
+ * the controller with; for page 1, BOARD with the rig's board name (RIG_BOARD_NAME), a character
+ * a byte, NUL after it.  That it changed nothing is judged with the refusals' snapshot
+ * (oracle.c). */
+static void judge_info(const rig *r, const oracle_outputs *out, int64_t page)
 {
     static int version[3] = {-1, -1, -1};
     if (version[0] < 0)
         FUZZ_CHECK(sscanf(TSE_EXPECT_VERSION, "%d.%d.%d", &version[0], &version[1], &version[2]) == 3);
-    FUZZ_CHECK(out->n_ack == 1 && out->n_info == 1 && out->info_at == out->ack_at + 1);
+    if (page == 1) {
+        static const char name[8] = RIG_BOARD_NAME; /* shorter than 8: NUL-padded */
+        FUZZ_CHECK(out->n_ack == 1 && out->n_board == 1 && out->n_info == 0 && out->board_at == out->ack_at + 1);
+        for (int k = 0; k < 8; ++k)
+            FUZZ_CHECK(out->board[k] == (unsigned char)name[k]);
+        return;
+    }
+    FUZZ_CHECK(out->n_ack == 1 && out->n_info == 1 && out->n_board == 0 && out->info_at == out->ack_at + 1);
     FUZZ_CHECK(out->info[0] == version[0] && out->info[1] == version[1] && out->info[2] == version[2]);
     FUZZ_CHECK(out->info[3] == r->cfg.step_hz && out->info[4] == r->cfg.segment_hz);
 }
@@ -337,7 +346,7 @@ static void judge_command(oracle_model *o, rig *r, const oracle_outputs *out, bo
     if (m != PM_PARAM_GET && m != PM_PARAM_SET)
         FUZZ_CHECK(out->n_pv == 0);
     if (m != PM_INFO_GET)
-        FUZZ_CHECK(out->n_info == 0);
+        FUZZ_CHECK(out->n_info == 0 && out->n_board == 0);
     /* A row of the trajectory that ended last is refused as such whatever the state. */
     if (m == PM_TRAJ_COMMIT) {
         int64_t field = 0;
@@ -380,7 +389,7 @@ static void judge_command(oracle_model *o, rig *r, const oracle_outputs *out, bo
         judge_params(o, r, out, hooked);
         break;
     case PM_INFO_GET:
-        judge_info(r, out);
+        judge_info(r, out, w->v[0]);
         break;
     default:
         FUZZ_CHECK(!"a command without a rule");
@@ -397,7 +406,7 @@ void oracle_judge_answers(oracle_model *o, rig *r, const oracle_outputs *out, bo
     case WIRE_OWN_TRAFFIC:
     case WIRE_BROADCAST:
         /* Not ours, or a broadcast: nothing answers (only ESTOP and STOP are honoured). */
-        FUZZ_CHECK(out->n_ack + out->n_rej + out->n_pv + out->n_info == 0);
+        FUZZ_CHECK(out->n_ack + out->n_rej + out->n_pv + out->n_info + out->n_board == 0);
         if (w->kind == WIRE_BROADCAST && w->well_formed && !hooked &&
             (w->msg == PM_ESTOP || (w->msg == PM_STOP && o->before.in.state != FW_STATE_BOOT)))
             judge_effect(o, r, w->msg, true);
@@ -407,7 +416,7 @@ void oracle_judge_answers(oracle_model *o, rig *r, const oracle_outputs *out, bo
     case WIRE_RANGE: {
         /* Malformed: one REJECT naming why, with the sequence number when the frame carries one
          * (a bad field other than it does not make it another's), 0 when it has none. */
-        FUZZ_CHECK(out->n_rej == 1 && out->n_ack == 0 && out->n_pv == 0 && out->n_info == 0);
+        FUZZ_CHECK(out->n_rej == 1 && out->n_ack == 0 && out->n_pv == 0 && out->n_info == 0 && out->n_board == 0);
         const int64_t *v = out->rej;
         FUZZ_CHECK(v[0] == w->function && v[1] == (w->kind == WIRE_RANGE ? w->seq : 0));
         const fw_reason want = w->kind == WIRE_UNKNOWN      ? FW_REASON_UNKNOWN

@@ -32,7 +32,8 @@ MSGS = ["ESTOP", "STOP", "HOST_HEARTBEAT", "ENABLE", "DISABLE", "HOME", "CLEAR_F
 PARAM = {"L": 0, "s_min": 7, "s_max": 8, "mu_min": 9, "steps_per_m": 11, "slide_vmax": 12,
          "slide_amax": 13, "plate_vmax": 14, "step_rate_max": 19, "watchdog_ms": 20,
          "status_ms": 21, "telemetry_ms": 22, "homing_speed": 23, "homing_backoff": 24,
-         "home_sw_1": 25, "step_pulse_ns": 31, "dir_setup_ns": 32, "can_kbps": 33, "traj_lead": 34}
+         "home_sw_1": 25, "step_pulse_ns": 31, "dir_setup_ns": 32, "can_kbps": 33, "traj_lead": 34,
+         "node": 35, "enable_level": 36}
 # Fake hook points (tests/firmware/fake_hal.h).
 AT_CLOCK, AT_RECEIVE, AT_CAN_STATE, AT_ENABLE = 0, 1, 2, 3
 
@@ -274,6 +275,11 @@ def seeds():
     new("info", reaches=("moving", "estop")).msg("INFO_GET", b"\x00").home().pose(dx=3000).move(ms=400) \
         .ms(50).msg("INFO_GET", b"\x00").msg("INFO_GET", b"\x00", flip=12).msg("INFO_GET", b"\x00", flip=11) \
         .cmd("ESTOP").msg("INFO_GET", b"\x00").msg("INFO_GET", b"\x00", node=2).rest()
+    # INFO_GET page 1 (BOARD) at rest and moving; node and enable_level set, refused out of range, saved
+    # and taken through a power cycle (the rig's configured node overrides the stored one).
+    new("board_node", reaches=("moving",)).msg("INFO_GET", b"\x01").param_set("node", 5) \
+        .param_set("node", 16).param_set("enable_level", 2).param_set("enable_level", 3).save().reboot() \
+        .msg("INFO_GET", b"\x01").home().pose(dx=3000).move(ms=400).ms(50).msg("INFO_GET", b"\x01").rest()
     new("msg_fields").msg("ENABLE", b"\x05").msg("MOVE_COMMIT", b"\x07\x05\x10\x00\x00\x00") \
         .msg("TRAJ_COMMIT", b"\x07\x00\x00\x00\x00\x03\x07") \
         .msg("POSE_A", b"\x01\xff\xff\x7f\x00\x00\x00", flip=30) \

@@ -157,6 +157,11 @@ static void read_outputs(rig *r, oracle_outputs *out)
             out->info_at = (int)i;
             memcpy(out->info, v, sizeof v);
             break;
+        case PM_BOARD:
+            ++out->n_board;
+            out->board_at = (int)i;
+            memcpy(out->board, v, sizeof v);
+            break;
         case PM_STATUS:
             if (!FUZZ_BOARD_TIME) /* (else judged as it was sent: oracle_sent) */
                 check_status(r, v);
@@ -374,7 +379,7 @@ void oracle_after_poll(rig *r)
     oracle_outputs out;
     read_outputs(r, &out);
     /* No frame, no answer: an answer here would be a second one to an earlier frame. */
-    FUZZ_CHECK(out.n_ack + out.n_rej + out.n_pv + out.n_info == 0);
+    FUZZ_CHECK(out.n_ack + out.n_rej + out.n_pv + out.n_info + out.n_board == 0);
     observe(r, false);
 }
 
@@ -384,7 +389,7 @@ void oracle_event(rig *r)
         suspect_zero(r);
     oracle_outputs out;
     read_outputs(r, &out);
-    FUZZ_CHECK(out.n_ack + out.n_rej + out.n_pv + out.n_info == 0);
+    FUZZ_CHECK(out.n_ack + out.n_rej + out.n_pv + out.n_info + out.n_board == 0);
     observe(r, false);
 }
 

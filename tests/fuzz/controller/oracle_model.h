@@ -58,12 +58,13 @@ typedef struct oracle_model {
     uint8_t zero_suspect;
 } oracle_model;
 
-/* The answers, parameter values and INFO one poll sent (the last of each kind), and where the
- * last ACK and INFO stood among the frames it sent. */
+/* The answers, parameter values, INFO and BOARD one poll sent (the last of each kind), and where
+ * the last ACK, INFO and BOARD stood among the frames it sent. */
 typedef struct {
-    int n_ack, n_rej, n_pv, n_info;
+    int n_ack, n_rej, n_pv, n_info, n_board;
     int64_t ack[PROTO_MAX_FIELDS], rej[PROTO_MAX_FIELDS], pv[PROTO_MAX_FIELDS], info[PROTO_MAX_FIELDS];
-    int ack_at, info_at;
+    int64_t board[PROTO_MAX_FIELDS];
+    int ack_at, info_at, board_at;
 } oracle_outputs;
 
 /* Judges the answers `out` to the frame o->wf, fed with the controller in o->before, and updates

@@ -167,9 +167,9 @@ void rig_start(rig *r, rig_fixture fixture)
     if (fast)
         r->f.storage_len = (int)fw_params_serialize(&p, r->f.storage, sizeof r->f.storage);
 #if FUZZ_BOARD_TIME
-    r->cfg = (fw_config){fixture == RIG_FAST_BOARD ? 15 : 1, 1000, fast ? 10000 : 100000, bt_await, &r->bt};
+    r->cfg = (fw_config){fixture == RIG_FAST_BOARD ? 15 : 1, 1000, fast ? 10000 : 100000, bt_await, &r->bt, RIG_BOARD_NAME};
 #else
-    r->cfg = (fw_config){fixture == RIG_FAST_BOARD ? 15 : 1, 1000, fast ? 10000 : 100000, NULL, NULL};
+    r->cfg = (fw_config){fixture == RIG_FAST_BOARD ? 15 : 1, 1000, fast ? 10000 : 100000, NULL, NULL, RIG_BOARD_NAME};
 #endif
     /* The plant's coordinates are the parameters' from the start (the fake's default switches are
      * the default set's). */

@@ -33,6 +33,9 @@
 #endif
 
 /* The fixtures the first input byte picks (modulo RIG_FIXTURES). */
+/* The board name the rig gives its controller (fw_config.board): what BOARD must carry. */
+#define RIG_BOARD_NAME "fuzzrig"
+
 typedef enum {
     /* tests/firmware/harness.c's: default parameters, 1 kHz segments, 100 kHz steps, the slides
      * just above their switches at 0.2 m; homing takes about 4.4 s of the cap. */

@@ -12,22 +12,27 @@
 #include "hal/stepper.h"
 #include "hal_stm32f4/board_desc.h"
 
-/* Configures every pin of the description: STEP and DIR low, the drivers disabled (at the
- * description's ENABLE level), the LED off, inputs with pull-ups, the CAN pins on their alternate
- * function.  Call once, after the peripheral clocks are on. */
+/* Configures every pin of the description: STEP and DIR low, the drivers disabled (at the ENABLE
+ * level board_enable_active_high says), the LED off, inputs with pull-ups, the CAN pins on their
+ * alternate function.  Call once, after the peripheral clocks are on (and after
+ * board_stepper_hal, for an ENABLE level other than the description's). */
 void board_pins_init(void);
 
 /* The status LED on or off (nothing where the board has none). */
 void board_led_set(bool on);
 
 /* STEP/DIR/ENABLE.  timer_hz: the clock of TIM4, which ends each STEP pulse (a one-shot).
- * enable_active_high: 1 high enables the drivers, 0 low does, < 0 the description's level;
- * board_outputs_safe (fault.h) disables them at the same level from then on (before, at the
+ * enable_active_high: 1 high enables the drivers, 0 low does, < 0 the description's level (the
+ * enable_level parameter, docs/board.md); it sets ENABLE inactive at once, and
+ * board_outputs_safe (fault.h) and board_pins_init use the same level from then on (before, the
  * description's). */
 hal_stepper board_stepper_hal(uint32_t timer_hz, int enable_active_high);
 
 /* The same on the pins of another description (the benchmark's per-slide path). */
 hal_stepper board_stepper_hal_for(const board_desc *d, uint32_t timer_hz, int enable_active_high);
+
+/* Whether ENABLE is active high: the description's level until board_stepper_hal sets another. */
+bool board_enable_active_high(void);
 
 /* Limit switches (pressed, or a broken wire, reads as pressed) and the e-stop input. */
 hal_inputs board_inputs_hal(void);

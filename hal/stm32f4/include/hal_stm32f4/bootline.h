@@ -1,5 +1,5 @@
 /* The boot line: one line of text when the image starts, on the board description's USART TX
- * (board_desc.h; USART1 on PA9 on generic_f405; 115200 8N1), saying what the start-up found.  For a 3.3 V serial adapter on the bench, and for
+ * (board_desc.h; USART1 on PA9 on gen_f405; 115200 8N1), saying what the start-up found.  For a 3.3 V serial adapter on the bench, and for
  * an emulator's console (QEMU's netduinoplus2 and tse-f407 model USART1: -serial).  Not
  * semihosting, which stops a board that has no debugger attached.
  *

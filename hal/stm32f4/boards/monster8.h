@@ -1,4 +1,4 @@
-/* mks_monster8: Makerbase MKS Monster8 V1 (STM32F407VET6, LQFP100, 512 KiB flash, 8 MHz crystal),
+/* monster8: Makerbase MKS Monster8 V1 (STM32F407VET6, LQFP100, 512 KiB flash, 8 MHz crystal),
  * a 3D-printer board with eight driver sockets and a CAN transceiver, its slides on driver sockets
  * 0..5 (a stepstick in each: STEP, DIR and EN per socket, EN low = enabled).  Sources:
  *   [K] Klipper config/generic-mks-monster8.cfg: the 48 KiB bootloader, the sockets' pins of
@@ -11,7 +11,7 @@
  * board has no more); X- and X+ are PA14 and PA13, the SWD pins: once the image configures them as
  * inputs a debugger must connect under reset.  PC13..PC15 are in the backup domain (weak outputs,
  * at most 2 MHz, datasheet): enough for 200 kHz steps into a stepstick's input. */
-#define BOARD_NAME "mks_monster8"
+#define BOARD_NAME "monster8"
 #define BOARD_SOURCES "Klipper config/generic-mks-monster8.cfg; MKS-Monster8 repository (README.md, Marlin pins_MKS_MONSTER8.h); uCNC boardmap_mks_monster8_v2.h; STM32F405/407 datasheet DocID022152, alternate function mapping table"
 #define BOARD_PART BOARD_PART_F407 /* [R] STM32F407VET6 */
 #define BOARD_PACKAGE BOARD_LQFP100

@@ -1,4 +1,4 @@
-/* olimex_e407: Olimex STM32-E407 (STM32F407ZGT6, LQFP144, 12 MHz crystal).  On-board parts, from
+/* olx_e407: Olimex STM32-E407 (STM32F407ZGT6, LQFP144, 12 MHz crystal).  On-board parts, from
  * NuttX's board support boards/arm/stm32/olimex-stm32-e407 (include/board.h and
  * src/olimex-stm32-e407.h; Olimex's schematic itself was not read for this file): the Ethernet PHY
  * LAN8710 on PA2, PA3, PA7, PC1, PC4, PC5, PG6, PG11, PG13, PG14 (and, as the issue lists its RMII
@@ -6,7 +6,7 @@
  * PB15, PF11; the SD card (SDIO) on PC8..PC12, PD2; button BUT on PA0; the status LED on PC13; SWD
  * PA13/PA14; the crystal on PH0/PH1.  CAN1 is on PB8/PB9 and USART1 on PB6/PB7 (the same files).
  * The slides take ports E and F, which none of those use. */
-#define BOARD_NAME "olimex_e407"
+#define BOARD_NAME "olx_e407"
 #define BOARD_SOURCES "NuttX olimex-stm32-e407 board support (include/board.h, src/olimex-stm32-e407.h); STM32F405/407 datasheet DocID022152, alternate function mapping table"
 #define BOARD_PART BOARD_PART_F407 /* STM32F407ZGT6 (board.h) */
 #define BOARD_PACKAGE BOARD_LQFP144

@@ -1,4 +1,4 @@
-/* stm32f4discovery: ST's STM32F4DISCOVERY kit (STM32F407VGT6, LQFP100, 8 MHz crystal X2), with the
+/* f4disco: ST's STM32F4DISCOVERY kit (STM32F407VGT6, LQFP100, 8 MHz crystal X2), with the
  * slides on pins its on-board parts leave alone.  Taken by the kit, as issue 26 quotes ST UM1472
  * ("Discovery kit with STM32F407VG MCU": its table "MCU pin description versus board function")
  * and as xpcc's STM32F4DISCOVERY example confirms for the LEDs, button and USB pins: PA0 user
@@ -8,7 +8,7 @@
  * the crystal on PH0/PH1; and, from our recollection of UM1472 (not checked), the accelerometer's
  * interrupts PE0/PE1, the microphone MP45DT02 on PB10/PC3 and SWO on PB3.  Every pin below is none of those ("UM1472 list: no on-board use").  UM1472 itself
  * was not read for this file: check a pin against its table before wiring it. */
-#define BOARD_NAME "stm32f4discovery"
+#define BOARD_NAME "f4disco"
 #define BOARD_SOURCES "ST UM1472 (STM32F4DISCOVERY user manual), its on-board pins as issue 26 lists them; xpcc STM32F4DISCOVERY example (LEDs, button, USB); STM32F405/407 datasheet DocID022152, alternate function mapping table"
 #define BOARD_PART BOARD_PART_F407 /* STM32F407VGT6 (UM1472) */
 #define BOARD_PACKAGE BOARD_LQFP100

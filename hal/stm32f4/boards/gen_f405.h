@@ -1,9 +1,9 @@
-/* generic_f405: the project's own bench map, pins of the 64-pin package only, so that one map fits
+/* gen_f405: the project's own bench map, pins of the 64-pin package only, so that one map fits
  * an STM32F405RG or any F405/F407 board with an 8 MHz crystal (a Netduino Plus 2 serves as a bench
  * controller).  Source of every pin: docs/board.md's wiring (the project's own design, the map
  * pinmap.h held before issue 26), checked against the STM32F405/407 datasheet DocID022152,
  * its pin definitions (LQFP64 column) and alternate function mapping tables. */
-#define BOARD_NAME "generic_f405"
+#define BOARD_NAME "gen_f405"
 #define BOARD_SOURCES "project design (docs/board.md); STM32F405/407 datasheet DocID022152, its pin definitions and alternate function mapping tables"
 #define BOARD_PART BOARD_PART_F405 /* STM32F405RGT6 */
 #define BOARD_PACKAGE BOARD_LQFP64
