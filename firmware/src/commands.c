@@ -333,7 +333,8 @@ static bool admit(fw_controller *c, const hal_can_frame *f, taken *t)
     return true;
 }
 
-/* A command that changes only the tick's state (ENABLE, DISABLE, CLEAR_FAULT, HOME, STOP, ESTOP):
+/* A command that changes only the tick's state (ENABLE, DISABLE, CLEAR_FAULT, HOME, STOP, ESTOP), or is
+ * judged by it alone (BOOT_ENTER):
  * handed over, answered by the tick's verdict. */
 static void state_command(fw_controller *c, const taken *t)
 {
@@ -343,14 +344,19 @@ static void state_command(fw_controller *c, const taken *t)
     const fw_verdict verdict = fw_handover(c);
     if (t->broadcast)
         return;
-    if (verdict.reason != FW_REASON_NONE)
+    if (verdict.reason != FW_REASON_NONE) {
         fw_reject(c, t->function, t->seq, verdict.reason, 0, NULL);
-    else
-        fw_ack(c, t->function, t->seq, 0);
+        return;
+    }
+    fw_ack(c, t->function, t->seq, 0);
+    if (t->m.msg == PM_BOOT_ENTER)
+        c->th.boot_requested = true; /* the tick judged the drives off; nothing enables them now */
 }
 
 void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
 {
+    if (c->th.boot_requested)
+        return; /* restarting into the bootloader: nothing more is taken (ENABLE above all) */
     taken t;
     if (!admit(c, f, &t))
         return;
@@ -388,6 +394,7 @@ void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
     case PM_PARAM_SAVE:
         param_save(c, t.function);
         return;
+    case PM_BOOT_ENTER:
     case PM_ESTOP:
     case PM_STOP:
     case PM_ENABLE:
