@@ -49,4 +49,7 @@ int run_trajectory(tlink *l, int argc, char **argv);
 int check_path(int argc, char **argv, int *done);
 int run_path(tlink *l, int argc, char **argv);
 
+int check_flash(int argc, char **argv, int *done);
+int run_flash(tlink *l, int argc, char **argv);
+
 #endif
