@@ -333,8 +333,7 @@ static bool admit(fw_controller *c, const hal_can_frame *f, taken *t)
     return true;
 }
 
-/* A command that changes only the tick's state (ENABLE, DISABLE, CLEAR_FAULT, HOME, STOP, ESTOP), or is
- * judged by it alone (BOOT_ENTER):
+/* A command that changes only the tick's state (ENABLE, DISABLE, CLEAR_FAULT, HOME, STOP, ESTOP):
  * handed over, answered by the tick's verdict. */
 static void state_command(fw_controller *c, const taken *t)
 {
@@ -344,13 +343,10 @@ static void state_command(fw_controller *c, const taken *t)
     const fw_verdict verdict = fw_handover(c);
     if (t->broadcast)
         return;
-    if (verdict.reason != FW_REASON_NONE) {
+    if (verdict.reason != FW_REASON_NONE)
         fw_reject(c, t->function, t->seq, verdict.reason, 0, NULL);
-        return;
-    }
-    fw_ack(c, t->function, t->seq, 0);
-    if (t->m.msg == PM_BOOT_ENTER)
-        c->th.boot_requested = true; /* the tick judged the drives off; nothing enables them now */
+    else
+        fw_ack(c, t->function, t->seq, 0);
 }
 
 void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
@@ -395,6 +391,12 @@ void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
         param_save(c, t.function);
         return;
     case PM_BOOT_ENTER:
+        /* admit() judged it against the tick's state as last read, which is exact about the
+         * drives: only ENABLE turns them on, and this thread hands that over and reads the state
+         * it leaves.  Nothing is taken after it, so nothing can enable them before the restart. */
+        fw_ack(c, t.function, t.seq, 0);
+        c->th.boot_requested = true;
+        return;
     case PM_ESTOP:
     case PM_STOP:
     case PM_ENABLE:

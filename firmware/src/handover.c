@@ -108,8 +108,6 @@ static void apply(fw_controller *c, const fw_request *r, fw_verdict *v)
     case PM_TRAJ_COMMIT:
         v->reason = take_row(c, r);
         break;
-    case PM_BOOT_ENTER: /* judged by the state alone (the drives off); the platform restarts */
-        break;
     case PM_PARAM_SET:
         v->rule = fw_params_adopt(c, &r->u.params);
         if (v->rule != FW_RULE_NONE)

@@ -154,16 +154,22 @@ static void test_request_survives_a_reset_only(void **state)
     (void)state;
     boot_request r;
     uint8_t node = 99;
+    uint32_t kbps = 12;
     memset(&r, 0xA5, sizeof r); /* what SRAM holds after a power cut: noise */
-    assert_false(boot_request_take(&r, &node));
+    assert_false(boot_request_take(&r, &node, &kbps));
     assert_int_equal(node, 99);
-    boot_request_set(&r, 7);
-    assert_true(boot_request_take(&r, &node));
+    assert_int_equal(kbps, 12);
+    boot_request_set(&r, 7, 250);
+    assert_true(boot_request_take(&r, &node, &kbps));
     assert_int_equal(node, 7);
-    assert_false(boot_request_take(&r, &node)); /* taken once */
-    boot_request_set(&r, 3);
+    assert_int_equal(kbps, 250);
+    assert_false(boot_request_take(&r, &node, &kbps)); /* taken once */
+    boot_request_set(&r, 3, 500);
     r.node = 4; /* a bit flipped */
-    assert_false(boot_request_take(&r, &node));
+    assert_false(boot_request_take(&r, &node, &kbps));
+    boot_request_set(&r, 3, 500);
+    r.kbps = 1000; /* another */
+    assert_false(boot_request_take(&r, &node, &kbps));
 }
 
 static void test_decision(void **state)

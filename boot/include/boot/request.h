@@ -16,14 +16,15 @@
 typedef struct {
     uint32_t magic;
     uint32_t node;  /* the node the application ran as: the bootloader answers as it */
-    uint32_t check; /* ~magic ^ node */
+    uint32_t kbps;  /* and the bit rate it ran at (its can_kbps) */
+    uint32_t check; /* ~magic ^ node ^ kbps */
 } boot_request;
 
-/* Asks the next start to stay in the bootloader, as node. */
-void boot_request_set(volatile boot_request *r, uint8_t node);
+/* Asks the next start to stay in the bootloader, as node at kbps. */
+void boot_request_set(volatile boot_request *r, uint8_t node, uint32_t kbps);
 
-/* Whether a request is there; takes it (clears it) either way, so that it is answered once.
- * *node gets its node (untouched without one). */
-bool boot_request_take(volatile boot_request *r, uint8_t *node);
+/* Whether a request is there (node 1..15, kbps 1..1000); takes it (clears it) either way, so that
+ * it is answered once.  *node and *kbps get its own (untouched without one). */
+bool boot_request_take(volatile boot_request *r, uint8_t *node, uint32_t *kbps);
 
 #endif
