@@ -7,7 +7,7 @@
  * the application area, is refused before anything is erased.  Then ERASE (timed apart), the
  * blocks with BOOT_WINDOW_BLOCKS in flight (a block refused for its frames or CRC, or out of order
  * behind one, is sent again, 5 times at most), VERIFY, BOOT_QUERY again to see the image there
- * with its version and CRC, and BOOT_START.  It prints the transfer's duration and rate against
+ * with its version and CRC, and BOOT_START (unless --no-start).  It prints the transfer's duration and rate against
  * the bus's limit, 8 x length / bit rate, at --bitrate (default 500000): the rate reached on the
  * wall clock, and the time the frames sent and answered need on a bus of that rate, stuff bits
  * counted (on vcan, which has no bit rate, the wall clock is no measure of a real bus). */
@@ -30,6 +30,7 @@ static uint8_t image[MAX_IMAGE + 8];
 static uint32_t image_len;
 static boot_image_header header;
 static long bitrate = 500000;
+static int no_start; /* --no-start: leave the board in its bootloader */
 static double bus_bits; /* bit times of the update's frames, both ways */
 
 static double now_s(void)
@@ -47,6 +48,8 @@ int check_flash(int argc, char **argv, int *done)
             bitrate = strtol(argv[++i], &end, 10);
             if (*end || bitrate < 10000 || bitrate > 1000000)
                 return usage_error(NULL, "--bitrate takes 10000..1000000 bit/s", argv[i]);
+        } else if (!strcmp(argv[i], "--no-start")) {
+            no_start = 1;
         } else if (argv[i][0] != '-' && !path)
             path = argv[i];
         else
@@ -336,6 +339,10 @@ int run_flash(tlink *l, int argc, char **argv)
     printf("rate: %.0f B/s, %.1f %% of the bus's limit (%ld bit/s / 8 = %.0f B/s: %.3f s for the image's bits "
            "alone)\n",
            image_len / took, 100.0 * image_len / took / limit, bitrate, limit, image_len / limit);
+    if (no_start) {
+        printf("node %u stays in its bootloader (--no-start)\n", l->node);
+        return EXIT_OK;
+    }
     const int32_t go[1] = {4};
     if ((rc = link_send(l, PM_BOOT_START, go) == 0 ? answered(l, PM_BOOT_START, 4, &a) : EXIT_BUS) != EXIT_OK)
         return rc;

@@ -128,13 +128,14 @@ const tsectl_command tsectl_commands[] = {
     {"path", "path WAYPOINTS.csv [--blend M] [--period S] [--jerk J|controller] [--dry-run] [--plot FILE.png]",
      path_help, check_path,
      run_path, 1},
-    {"flash", "flash IMAGE [--bitrate BPS]",
+    {"flash", "flash IMAGE [--bitrate BPS] [--no-start]",
      "Update the controller's firmware over the bus (docs/protocol.md, Updating the firmware).  IMAGE is\n"
      "an image with its header (tse-image stamp); one whose header, length or CRC is wrong exits 2 with\n"
      "nothing sent.  A node running its application is asked to restart into its bootloader (refused\n"
      "while its drives may be on: disable first).  An image for another board, or too long for the\n"
      "application area, exits 3 before anything is erased.  Then erase (timed apart), the blocks with\n"
-     "progress, verify (the bootloader's CRC of what it wrote, and its report of the image), and start.\n"
+     "progress, verify (the bootloader's CRC of what it wrote, and its report of the image), and start\n"
+     "it (--no-start: the board stays in its bootloader).\n"
      "Prints the transfer's duration and rate against the bus's limit, --bitrate / 8 bytes a second\n"
      "(default 500000 bit/s): on the wall clock, and as the time its frames need on such a bus.",
      check_flash, run_flash, 0},
