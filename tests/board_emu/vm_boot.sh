@@ -3,9 +3,11 @@
 # of the emulated STM32F407 with an empty application area, driven by tsectl on the harness's
 # vcan0: it answers BOOT_QUERY as its board, refuses an image for another board before erasing,
 # and takes an 85 KiB image through the board's flash controller (flash_f4_device_ops): erase,
-# blocks, VERIFY (its CRC read back from the emulated flash), BOOT_START.  The image is random
-# bytes with a valid header (what starts after BOOT_START is not an application: the emulator
-# may stop there).  The figures printed are the emulator's wall clock, not a board's.
+# blocks, VERIFY (its CRC read back from the emulated flash).  The image is random bytes with a
+# valid header, not an application: tsectl flash --no-start leaves the board in its bootloader.
+# Then the update is cut by power cycles (tse-rig cutflash at an erase and at a word program,
+# tse-rig reset at a random moment) and sent again.  The figures printed are the
+# emulator's wall clock, not a board's.
 #
 #   vm_boot.sh TSE_BOOT_ELF HOST_TOOLS WORKDIR PYTHON
 #
@@ -42,10 +44,35 @@ sleep 2
 $T flash foreign.img >foreign.log 2>&1
 check "an image for another board refused before erasing" "grep -q 'nothing erased' foreign.log"
 check "the bootloader reports an empty application area at 0x08004000" "grep -q 'application area 0x08004000, 770048 bytes; no application' foreign.log"
-$T flash app.img >flash.log 2>&1
+$T flash app.img --no-start >flash.log 2>&1
 rc=$?
 check "tsectl flash exits 0" "[ $rc -eq 0 ]"
 check "verified: 0.3.0 read back from the emulated flash" "grep -q 'verified: application 0.3.0' flash.log"
+
+# Cut by power cycles (issue 28 pt 5): at the 2nd flash operation (the second sector's erase), at
+# the 5000th (a word of the blocks), and at a moment drawn at random; each time the bootloader
+# comes back with no application (the header was never written) and the update, sent again,
+# completes.  The emulator's cutflash cuts as the Nth operation starts (docs/emulator.md).
+cut_then_complete() {
+  what=$1
+  tse-rig flashops >ops.log 2>&1
+  $T flash app.img --no-start >cut.log 2>&1
+  rcc=$?
+  sleep 3
+  $T flash app.img --no-start >again.log 2>&1
+  rca=$?
+  check "$what: the cut update fails (exit $rcc)" "[ $rcc -ne 0 ]"
+  check "$what: the bootloader answers after the power cycle, no application in its area" "grep -q '770048 bytes; no application' again.log"
+  check "$what: the update sent again completes and verifies" "[ $rca -eq 0 ] && grep -q 'verified: application 0.3.0' again.log"
+  tail -3 cut.log | sed "s/^/  $what, cut: /"
+}
+tse-rig cutflash 2 >/dev/null
+cut_then_complete "power cut at the 2nd flash operation (an erase)"
+tse-rig cutflash 5000 >/dev/null
+cut_then_complete "power cut at the 5000th flash operation (a word)"
+delay=$(( $(od -An -N1 -tu1 /dev/urandom) % 20 + 2 ))
+( sleep $delay; tse-rig reset >/dev/null ) &
+cut_then_complete "power cycle (tse-rig reset) ${delay} s into the update"
 cat foreign.log flash.log
 grep -h "^transfer\|^rate\|^erased" flash.log | sed 's/^/figure: emulated board: /'
 echo "$pass passed, $fail failed"
