@@ -37,7 +37,8 @@ static int usage(FILE *out, int rc)
                  "  --iface IF    SocketCAN interface (default vcan0)\n"
                  "  --node N      node 1..15 (default 1)\n"
                  "  --board NAME  the board's name, whose CRC-32 an image must carry (default tse-sim)\n"
-                 "  --stay        as after BOOT_ENTER: stay in the bootloader even with a valid image\n");
+                 "  --stay        as after BOOT_ENTER: stay in the bootloader even with a valid image\n"
+                 "  --drop N      lose the Nth frame it receives (1: the first), as an overrun would\n");
     return rc;
 }
 
@@ -53,7 +54,7 @@ static file_flash flash;
 int main(int argc, char **argv)
 {
     const char *path = NULL, *iface = "vcan0", *board_name = "tse-sim";
-    long node = 1;
+    long node = 1, drop = 0;
     int stay = 0;
     for (int i = 1; i < argc; ++i) {
         const int more = i + 1 < argc;
@@ -68,6 +69,13 @@ int main(int argc, char **argv)
             node = strtol(argv[++i], &end, 10);
             if (*end || node < 1 || node > 15) {
                 fprintf(stderr, "tse-boot-sim: --node takes 1..15: %s\n", argv[i]);
+                return 2;
+            }
+        } else if (!strcmp(argv[i], "--drop") && more) {
+            char *end;
+            drop = strtol(argv[++i], &end, 10);
+            if (*end || drop < 1) {
+                fprintf(stderr, "tse-boot-sim: --drop takes a frame count from 1: %s\n", argv[i]);
                 return 2;
             }
         } else if (!strcmp(argv[i], "--stay"))
@@ -113,9 +121,15 @@ int main(int argc, char **argv)
            board, stay ? "asked to stay" : "no application to start", boot_image_status_name(why));
     fflush(stdout);
     const hal_can hc = posix_can_hal(&can);
+    long received = 0;
     while (!stop_now && !bus.start) {
         hal_can_frame f;
         if (hc.receive(hc.ctx, &f) == 1) {
+            if (++received == drop) {
+                printf("tse-boot-sim: frame %ld (id 0x%03x) lost (--drop)\n", received, f.id);
+                fflush(stdout);
+                continue;
+            }
             boot_bus_frame(&bus, &f);
             continue;
         }

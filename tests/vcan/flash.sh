@@ -44,6 +44,18 @@ check "the bootloader reported application 0.1.0 before" "grep -q 'application 0
 check "verified: application 0.2.0" "grep -q 'verified: application 0.2.0' flash2.log"
 check "the bootloader starts application 0.2.0" "grep -q 'starting the application 0.2.0' boot2.log"
 
+# A frame lost in the middle of block 1 (the 200th frame the bootloader takes: BOOT_QUERY, ERASE,
+# block 0's 129, then block 1's): block 1 is refused `length` when block 2's BOOT_WRITE finds it
+# open, block 2 `order` behind it, and tsectl sends again from block 1.
+tse-boot-sim --iface vcan0 --node 3 --flash board.flash --stay --drop 200 >boot5.log 2>&1 &
+boot=$!
+sleep 1
+$T flash app1.img >lost.log 2>&1
+rcl=$?
+ended $boot
+check "a lost frame: the bootloader lost it" "grep -q 'frame 200 .* lost' boot5.log"
+check "... tsectl sends again from the refused block and completes" "[ $rcl -eq 0 ] && grep -q 'block 1 refused (length), sending again' lost.log && grep -q 'verified: application 0.1.0' lost.log"
+
 # From a running application (tse-sim as node 3): refused while its drives are on; once disabled,
 # BOOT_ENTER restarts it into the bootloader (here: tse-sim ends, tse-boot-sim --stay starts, as a
 # board restarts), and the update goes through.
@@ -64,8 +76,9 @@ check "... and tsectl flash app1.img exits 0" "[ $rc3 -eq 0 ] && grep -q 'verifi
 sleep 0.5
 check "... the bootloader starts application 0.1.0" "grep -q 'starting the application 0.1.0' boot3.log"
 
-# tse.can's Controller.flash: app2 over app1, the bootloader staying as after BOOT_ENTER.
-tse-boot-sim --iface vcan0 --node 3 --flash board.flash --stay >boot4.log 2>&1 &
+# tse.can's Controller.flash: app2 over app1, the bootloader staying as after BOOT_ENTER, a frame
+# of block 1 lost (the BOOT_QUERY of the foreign image's refusal counts as frame 1).
+tse-boot-sim --iface vcan0 --node 3 --flash board.flash --stay --drop 201 >boot4.log 2>&1 &
 boot=$!
 sleep 1
 python3 - >py.log 2>&1 <<'PY'
@@ -82,6 +95,7 @@ PY
 ended $boot
 check "tse.can refuses the foreign image naming the boards" "grep -q 'foreign: refused: the image is for board olimex-e407' py.log"
 check "tse.can Controller.flash app2.img: version 0.2.0" "grep -q 'python flash: version 0.2.0' py.log"
+check "... a frame of block 1 lost on the way and the block sent again" "grep -q 'frame 201 .* lost' boot4.log"
 check "... and the bootloader starts 0.2.0" "grep -q 'starting the application 0.2.0' boot4.log"
 kill $dump
 check "BOOT_DATA frames on the bus (id 0x7E3)" "grep -q ' 7E3 ' dump.log"
