@@ -172,7 +172,7 @@ __attribute__((noreturn)) static void restart_into_bootloader(board_state *b)
         board_iwdg_feed();
     for (volatile uint32_t i = 0; i < 200000u; ++i) { /* the last frame leaves its mailbox */
     }
-    boot_request_set(BOOT_F4_REQUEST, TSE_BOARD_NODE, (uint32_t)fw_params_of(b->fw)->v[FP_CAN_KBPS]);
+    boot_request_set(BOOT_F4_REQUEST, fw_config_of(b->fw)->node, (uint32_t)fw_params_of(b->fw)->v[FP_CAN_KBPS]);
     __asm__ volatile("dsb" ::: "memory");
     TSE_SCB->AIRCR = SCB_AIRCR_VECTKEY | SCB_AIRCR_SYSRESETREQ;
     for (;;)
