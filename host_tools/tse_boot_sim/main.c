@@ -113,8 +113,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "tse-boot-sim: %s: %s\n", iface, strerror(errno));
         return 1;
     }
-    signal(SIGINT, on_signal);
-    signal(SIGTERM, on_signal);
+    (void)signal(SIGINT, on_signal); /* SIG_ERR only for a bad signal number */
+    (void)signal(SIGTERM, on_signal);
     static boot_bus bus;
     boot_bus_init(&bus, &layout, &ops, board, (uint8_t)node, posix_can_hal(&can));
     printf("tse-boot-sim: node %ld, board %s (0x%08x), in the bootloader (%s; application: %s)\n", node, board_name,

@@ -33,7 +33,7 @@ static long read_file(const char *path)
     }
     const size_t n = fread(img, 1, sizeof img, f);
     const int more = fgetc(f) != EOF;
-    fclose(f);
+    (void)fclose(f); /* read only: nothing to lose */
     if (more) {
         fprintf(stderr, "tse-image: %s: longer than %u bytes\n", path, MAX_IMAGE);
         return -1;
@@ -41,13 +41,21 @@ static long read_file(const char *path)
     return (long)n;
 }
 
+/* X.Y.Z, each 0..255, nothing else. */
 static int parse_version(const char *s, uint32_t *v)
 {
-    unsigned a, b, c;
-    char tail;
-    if (sscanf(s, "%u.%u.%u%c", &a, &b, &c, &tail) != 3 || a > 255 || b > 255 || c > 255)
-        return -1;
-    *v = a << 16 | b << 8 | c;
+    uint32_t part[3];
+    for (int k = 0; k < 3; ++k) {
+        if (*s < '0' || *s > '9')
+            return -1;
+        char *end;
+        const unsigned long x = strtoul(s, &end, 10);
+        if (x > 255 || *end != (k < 2 ? '.' : '\0'))
+            return -1;
+        part[k] = (uint32_t)x;
+        s = end + 1;
+    }
+    *v = part[0] << 16 | part[1] << 8 | part[2];
     return 0;
 }
 
@@ -90,6 +98,8 @@ static int stamp(const char *in, const char *out, const char *board, uint32_t ve
     put32(h + 8, boot_board_id(board));
     put32(h + 12, version);
     put32(h + 16, (uint32_t)n);
+    /* A NUL-padded field (zeroed above), not a C string: at most 16 characters, no NUL of its own.
+     * NOLINTNEXTLINE(bugprone-not-null-terminated-result) */
     memcpy(h + 24, board, strlen(board));
     put32(h + 20, boot_image_crc(img, (uint32_t)n, NULL));
     FILE *f = fopen(out, "wb");

@@ -63,7 +63,7 @@ int check_flash(int argc, char **argv, int *done)
         return EXIT_USAGE;
     }
     const size_t n = fread(image, 1, MAX_IMAGE + 1u, f);
-    fclose(f);
+    (void)fclose(f); /* read only: nothing to lose */
     if (n > MAX_IMAGE || n < BOOT_IMAGE_MIN_LENGTH) {
         ctl_error("%s: %zu bytes: not an image (%u to %u bytes)", path, n, BOOT_IMAGE_MIN_LENGTH, MAX_IMAGE);
         return EXIT_USAGE;
