@@ -115,7 +115,7 @@ MESSAGES = {
         ("queue_free", "u8", 3, 0, 255, "", 1.0, None,
          "trajectory points that may still be sent"),
         ("detail", "u32", 4, 0, 2147483647, "s", 0.001, None,
-         "for a move: its planned duration (after any stretching to the slide limits)"),
+         "for a move: its planned duration (after any stretching to the slide limits); from a bootloader, for BOOT_ERASE the sectors erased, for BOOT_WRITE the block's number, for BOOT_VERIFY the image's CRC-32 but its top bit (in units of 1, not ms)"),
     ), "Every accepted command gets one; it is also the flow control of trajectory streaming."),
     "HOST_HEARTBEAT": (0x05, "to_controller", 1, (
         ("counter", "u8", 0, 0, 255, "", 1.0, None,
