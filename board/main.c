@@ -9,6 +9,7 @@
  * thread and the tick passes through the firmware's hand-over, which needs no lock. */
 #include <string.h>
 
+#include "boot_f4.h"
 #include "fw/controller.h"
 #include "fw/limits.h"
 #include "fw/proto_wire.h"
@@ -171,6 +172,21 @@ static void boot_line(const board_state *b)
     board_bootline_puts("\r\n");
 }
 
+/* BOOT_ENTER was taken with the drives off (fw_boot_requested): its ACK onto the bus, then a
+ * reset with the request that the bootloader stay, as this node at this bit rate (boot_f4.h). */
+__attribute__((noreturn)) static void restart_into_bootloader(board_state *b)
+{
+    for (uint32_t i = 0; i < 1000000u && can_ring_count(&b->can.tx) != 0; ++i)
+        board_iwdg_feed();
+    for (volatile uint32_t i = 0; i < 200000u; ++i) { /* the last frame leaves its mailbox */
+    }
+    boot_request_set(BOOT_F4_REQUEST, fw_config_of(b->fw)->node, (uint32_t)fw_params_of(b->fw)->v[FP_CAN_KBPS]);
+    __asm__ volatile("dsb" ::: "memory");
+    TSE_SCB->AIRCR = SCB_AIRCR_VECTKEY | SCB_AIRCR_SYSRESETREQ;
+    for (;;)
+        __asm__ volatile("nop");
+}
+
 int main(void)
 {
     board_state *b = &tse_board;
@@ -243,6 +259,8 @@ int main(void)
     /* The controller's thread: what came and what is due, then sleep until an interrupt. */
     for (;;) {
         fw_poll(b->fw);
+        if (fw_boot_requested(b->fw))
+            restart_into_bootloader(b);
         __asm__ volatile("wfi" ::: "memory");
     }
 }

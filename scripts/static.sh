@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Static analysis of kinematics/, firmware/, hal/ and host_tools/ (sources and the headers they
+# Static analysis of kinematics/, firmware/, hal/, host_tools/ and boot/ (sources and the headers they
 # include): cppcheck and clang-tidy, each with the compile commands of the real builds, so both
 # precisions, the host's POSIX code and the board's register code are analysed as compiled.
 #   - host:  a host configure (tse_kin_d and tse_kin_f, firmware in double, hal/posix, the tools);
@@ -39,7 +39,7 @@ newlib_inc=$(echo | arm-none-eabi-gcc -xc -E -v - 2>&1 | sed -n '/^#include <...
 python3 - "$root" "$out" "$newlib_inc" <<'EOF'
 import json, os, re, shlex, sys
 root, out, newlib = sys.argv[1:]
-dirs = ('kinematics', 'firmware', 'hal', 'host_tools')
+dirs = ('kinematics', 'firmware', 'hal', 'host_tools', 'boot')
 
 def ours(path):
     rel = os.path.relpath(path, root)

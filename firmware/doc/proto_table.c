@@ -47,6 +47,13 @@ const proto_enum_entry proto_reason_names[] = {
     {FW_REASON_ORDER, "order"},
     {FW_REASON_ENDED, "ended"},
     {FW_REASON_TOO_LONG, "too_long"},
+    {FW_REASON_CRC, "crc"},
+    {FW_REASON_ADDRESS, "address"},
+    {FW_REASON_LENGTH, "length"},
+    {FW_REASON_HEADER, "header"},
+    {FW_REASON_BOARD, "board"},
+    {FW_REASON_FLASH, "flash"},
+    {FW_REASON_NO_IMAGE, "no_image"},
     {0, 0},
 };
 

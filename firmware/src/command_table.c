@@ -22,6 +22,15 @@ static const uint8_t allowed[PM_COUNT][FW_STATE_COUNT] = {
     [PM_PARAM_SET] = {S, A, S, S, S, S, A, A},
     [PM_PARAM_SAVE] = {S, A, S, S, S, S, A, A},
     [PM_INFO_GET] = {A, A, A, A, A, A, A, A},
+    /* Only with the drives off: the restart that follows drops them without a stop. */
+    [PM_BOOT_ENTER] = {A, A, S, S, S, S, A, A},
+    /* A bootloader's own commands: an application is in none of its states. */
+    [PM_BOOT_QUERY] = {S, S, S, S, S, S, S, S},
+    [PM_BOOT_ERASE] = {S, S, S, S, S, S, S, S},
+    [PM_BOOT_WRITE] = {S, S, S, S, S, S, S, S},
+    [PM_BOOT_VERIFY] = {S, S, S, S, S, S, S, S},
+    [PM_BOOT_START] = {S, S, S, S, S, S, S, S},
+    [PM_BOOT_DATA] = {S, S, S, S, S, S, S, S},
 };
 
 #undef A

@@ -362,6 +362,8 @@ static void state_command(fw_controller *c, const taken *t)
 
 void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
 {
+    if (c->th.boot_requested)
+        return; /* restarting into the bootloader: nothing more is taken (ENABLE above all) */
     taken t;
     if (!admit(c, f, &t))
         return;
@@ -401,6 +403,13 @@ void fw_handle_frame(fw_controller *c, const hal_can_frame *f)
         return;
     case PM_PARAM_SAVE:
         param_save(c, t.function);
+        return;
+    case PM_BOOT_ENTER:
+        /* admit() judged it against the tick's state as last read, which is exact about the
+         * drives: only ENABLE turns them on, and this thread hands that over and reads the state
+         * it leaves.  Nothing is taken after it, so nothing can enable them before the restart. */
+        fw_ack(c, t.function, t.seq, 0);
+        c->th.boot_requested = true;
         return;
     case PM_ESTOP:
     case PM_STOP:

@@ -89,6 +89,11 @@ bool fw_drives_of(const fw_controller *c)
     return c->tick.drives_on;
 }
 
+bool fw_boot_requested(const fw_controller *c)
+{
+    return c->th.boot_requested;
+}
+
 const fw_config *fw_config_of(const fw_controller *c)
 {
     return &c->cfg;

@@ -243,6 +243,7 @@ typedef struct {
     bool abandon;           /* it was ended: a STOP or an e-stop came */
 
     fw_view view;           /* the tick's state as last read */
+    bool boot_requested;    /* BOOT_ENTER was acknowledged: the platform restarts into its bootloader */
 } fw_thread;
 
 struct fw_controller {

@@ -2,6 +2,8 @@
  * See outputs.h. */
 #include <stdio.h>
 
+#include "boot/image.h"
+#include "boot/update.h"
 #include "decimal_text.h"
 #include "field_type.h"
 #include "flags_text.h"
@@ -24,6 +26,52 @@ static void print_codes(FILE *out, const char *title, const proto_code *c)
     fprintf(out, "\n### %s\n\n| value | name | meaning |\n|---|---|---|\n", title);
     for (; c->name; ++c)
         fprintf(out, "| %d | `%s` | %s |\n", (int)c->value, c->name, c->words);
+}
+
+/* The bootloader's protocol (boot/update.h), with the bus's limit it is measured against. */
+static void updating(FILE *out)
+{
+    const unsigned frames = BOOT_BLOCK_BYTES / 8u;
+    fprintf(out, "### Updating the firmware\n\n"
+                 "A board's bootloader (its own image in the first flash sector) starts the application when the\n"
+                 "application area holds a whole image for this board and no update was asked for; otherwise it\n"
+                 "stays on the bus, as the same node, and takes one. `BOOT_ENTER` asks the application to restart\n"
+                 "into it (refused `state` while the drives may be on); the bootloader's own commands are refused\n"
+                 "`state` by an application, which is how a host tells the two apart. An update: `BOOT_QUERY`\n"
+                 "(answered `BOOT_ID`: the bootloader's version, the board's identity, the block size;\n"
+                 "`BOOT_LAYOUT`: the application area; `BOOT_APP`: the image in it, its version and CRC), then\n"
+                 "`BOOT_ERASE` with the image's length (acknowledged once the sectors it needs are erased: seconds,\n"
+                 "timed apart from the transfer), then the blocks in order from 0, then `BOOT_VERIFY`, then\n"
+                 "`BOOT_START`. A host refuses an image whose header names another board before it erases\n"
+                 "anything; the bootloader refuses it too (`board`, at block 0).\n\n"
+                 "An image is the application's flash from its first byte, with a %u-byte header at offset 0x%X\n"
+                 "(after the vector table): magic `TSEI`, header version %u, the board's identity (the CRC-32 of\n"
+                 "its board name), the application's version, its length and the CRC-32 (IEEE 802.3, as zlib's\n"
+                 "crc32) of bytes 0 .. length - 1 without the crc word itself (offset 0x%X). The build writes it\n"
+                 "after linking. The bootloader holds block 0's header back while it writes the rest, and only\n"
+                 "`BOOT_VERIFY`, once the CRC read back from flash matches, programs it, its magic word last: a\n"
+                 "power cut at any moment leaves the old image whole (before the first erase took it), no image\n"
+                 "(the bootloader stays), or the new one whole, and the bootloader never starts anything less.\n\n"
+                 "A block is %u bytes: `BOOT_WRITE` (its number, its frames, its CRC-32), then %u `BOOT_DATA`\n"
+                 "frames of 8 bytes at implicit offsets (fewer for the image's last block, its last frame padded),\n"
+                 "answered by one `ACK` (detail: the block's number) once programmed, or a `REJECT`: `order` (not\n"
+                 "the next block: `where` is the one expected), `address`, `length`, `crc`, `header`, `board`,\n"
+                 "`flash`. A refused block writes nothing; the host sends again from it. The host keeps %u blocks\n"
+                 "in flight: it sends block k + 1 while block k is programmed and acknowledged, so that neither\n"
+                 "the round trip nor the programming stands in the bus's way.\n\n"
+                 "**The bus's limit.** At 500 kbit/s an image's bits alone take `8 x length / 500000` s: 62,500\n"
+                 "B/s, 1.39 s for 85 KiB. That is the limit an update is measured against (issue 28: at least\n"
+                 "half of it, 31,250 B/s, 2.79 s for 85 KiB). No CAN transfer reaches it: a classic data frame\n"
+                 "with 8 bytes (11-bit identifier) is 108 bits plus 3 of intermission, 111 bits for 64 bits of\n"
+                 "payload, before stuff bits (one after five equal bits, up to 24 more in the 98 bits from the\n"
+                 "start of frame to the CRC). So 8-byte frames back to back carry at most 64 / 111 of the bit\n"
+                 "rate, 36,036 B/s (57.7 %% of the limit) without stuffing, 29,630 B/s (47.4 %%) with the most\n"
+                 "stuffing data can cause. An update adds a `BOOT_WRITE` and an `ACK` to every %u `BOOT_DATA`\n"
+                 "frames (98.5 %% of the frames carry the image): 35,481 B/s, 56.8 %% of the limit, before\n"
+                 "stuffing; `BOOT_DATA`'s identifier (0x7E0 + node) costs one stuff bit a frame, and the image's\n"
+                 "own bits some more. `tsectl flash` prints the rate it reached against the limit.\n\n",
+            (unsigned)sizeof(boot_image_header), BOOT_IMAGE_HEADER_OFFSET, BOOT_IMAGE_HEADER_VERSION,
+            BOOT_IMAGE_CRC_OFFSET, BOOT_BLOCK_BYTES, frames, BOOT_WINDOW_BLOCKS, frames);
 }
 
 static void intro(FILE *out)
@@ -65,6 +113,7 @@ static void intro(FILE *out)
                  "receive ring. A row refused `queue_full` is sent again, in order, with the rows after it\n"
                  "(refused `order` meanwhile), once there is room.\n\n",
             PROTO_TRAJ_WINDOW, PROTO_TRAJ_WINDOW, 4 * PROTO_TRAJ_WINDOW);
+    updating(out);
     fprintf(out, "In the message tables, a field's physical value is its raw value times its \"one raw count\";\n"
                  "`-` marks a plain number or code.\n");
 }

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "boot/image.h"
 #include "fw/params.h"
 #include "fw/path.h"
 #include "fw/reject.h"
@@ -30,6 +31,18 @@ static const char *state_advice(int function, int state)
         return "clear it first ('tsectl clear'), then enable and home";
     }
     switch (m) {
+    case PM_BOOT_ENTER:
+        return "the drives may be on: stop and disable them first ('tsectl disable')";
+    case PM_BOOT_QUERY:
+    case PM_BOOT_ERASE:
+    case PM_BOOT_WRITE:
+    case PM_BOOT_VERIFY:
+    case PM_BOOT_START:
+    case PM_BOOT_DATA:
+        return state == FW_STATE_BOOT ? "the bootloader takes it only in its turn of an update (ERASE first, "
+                                        "'tsectl flash' sends them in order)"
+                                      : "it is a bootloader's command: an application asks BOOT_ENTER first "
+                                        "('tsectl flash' does)";
     case PM_HOME:
         if (state == FW_STATE_HOMING)
             return "homing is already running: wait for it ('tsectl home --wait' waits)";
@@ -208,6 +221,13 @@ const char *reject_text(const proto_message *r, char *buf, size_t cap)
                  cmd);
         break;
     case FW_REASON_ORDER:
+        if (function == proto_table[PM_BOOT_WRITE].function) {
+            snprintf(buf, cap,
+                     "rejected: order: %s: not the next block of the image (the bootloader expects block %d): a "
+                     "block before it was refused or lost; nothing was written (send again from that block)",
+                     cmd, where);
+            break;
+        }
         snprintf(buf, cap,
                  "rejected: order: %s: not the next row of its trajectory (the controller expects sequence number "
                  "%d): a row before it was refused or lost; nothing was taken (send again from the first row not "
@@ -216,6 +236,44 @@ const char *reject_text(const proto_message *r, char *buf, size_t cap)
         break;
     case FW_REASON_ENDED:
         ended_text(buf, cap, cmd, field & 15, field >> 4, where);
+        break;
+    case FW_REASON_CRC:
+        snprintf(buf, cap,
+                 "rejected: crc: %s: the CRC-32 of what arrived differs from the one declared (frames damaged or "
+                 "lost on the bus, or an image whose header's CRC is wrong); nothing of it is bootable",
+                 cmd);
+        break;
+    case FW_REASON_ADDRESS:
+        snprintf(buf, cap, "rejected: address: %s: block %d lies beyond the image's erased length; nothing written",
+                 cmd, where);
+        break;
+    case FW_REASON_LENGTH:
+        snprintf(buf, cap,
+                 "rejected: length: %s: a length that cannot be (an image not of whole words, shorter than its "
+                 "header or longer than the application area; a block with other than its frames, %d expected or "
+                 "received; blocks missing before VERIFY); nothing written",
+                 cmd, where);
+        break;
+    case FW_REASON_HEADER:
+        snprintf(buf, cap,
+                 "rejected: header: %s: block 0 holds no image header of a version this bootloader reads, or "
+                 "one whose length differs from the one erased for (field %d); nothing written",
+                 cmd, field);
+        break;
+    case FW_REASON_BOARD:
+        snprintf(buf, cap, "rejected: board: %s: the image is built for another board; nothing written", cmd);
+        break;
+    case FW_REASON_FLASH:
+        snprintf(buf, cap,
+                 "rejected: flash: %s: a flash erase or program failed (sector or block %d); the update must "
+                 "start again from its erase",
+                 cmd, where);
+        break;
+    case FW_REASON_NO_IMAGE:
+        snprintf(buf, cap,
+                 "rejected: no_image: %s: the application area holds no whole image for this board (%s: "
+                 "boot/image.h); the bootloader stays",
+                 cmd, boot_image_status_name((boot_image_status)field));
         break;
     case FW_REASON_INCOMPLETE:
         snprintf(buf, cap, "rejected: incomplete: %s: a part of its pose did not arrive (frames lost on the bus?)", cmd);

@@ -420,7 +420,7 @@ int main(int argc, char **argv)
     /* This thread is the controller's: frames as they come, and the periodic frames every
      * millisecond at least.  fw_poll takes every frame the bus holds, so after it the thread has
      * caught up with the bus as it was when the poll began (a late period waits for that). */
-    while (rc == 0 && !quit) {
+    while (rc == 0 && !quit && !fw_boot_requested(s.fw)) {
         const uint64_t look = posix_ticker_now_ns();
         fw_poll(s.fw);
         posix_ticker_caught_up(&ticker, look);
@@ -428,6 +428,9 @@ int main(int argc, char **argv)
     }
     posix_ticker_stop(&ticker);
     posix_can_close(&can);
+    if (fw_boot_requested(s.fw))
+        /* A board restarts into its bootloader here; tse-boot-sim --stay is the simulator's. */
+        printf("tse-sim: BOOT_ENTER taken: restarting into the bootloader (tse-boot-sim --stay takes over)\n");
     log_fault_counts(&s);
     /* Late periods: the host did not schedule tse-sim in time (a loaded machine, a VM).  The ticker
      * makes them up as soon as this thread has taken the frames that came before each, and the

@@ -55,4 +55,7 @@ int run_scan(tlink *l, int argc, char **argv);
 int check_node(int argc, char **argv, int *done);
 int run_node(tlink *l, int argc, char **argv);
 
+int check_flash(int argc, char **argv, int *done);
+int run_flash(tlink *l, int argc, char **argv);
+
 #endif

@@ -103,7 +103,17 @@ int link_send_to(tlink *l, uint8_t node, proto_msg msg, const int32_t *values)
     fr.can_id = f.id;
     fr.can_dlc = f.len;
     memcpy(fr.data, f.data, f.len);
-    return write(l->fd, &fr, sizeof fr) == (ssize_t)sizeof fr ? 0 : -1;
+    /* A full interface queue (ENOBUFS: a burst, such as an update's blocks, outruns a real
+     * adapter's queue) is waited out, a second at most. */
+    for (int tries = 0; tries < 2000; ++tries) {
+        if (write(l->fd, &fr, sizeof fr) == (ssize_t)sizeof fr)
+            return 0;
+        if (errno != ENOBUFS && errno != EAGAIN)
+            return -1;
+        const struct timespec half_ms = {0, 500000};
+        nanosleep(&half_ms, NULL);
+    }
+    return -1;
 }
 
 static void heartbeat(tlink *l)

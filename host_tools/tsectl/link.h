@@ -35,7 +35,8 @@ int link_telemetry(tlink *l, bool on);
 void link_close(tlink *l);
 uint64_t link_now_us(void);
 
-/* Sends a message to the node.  Returns 0 or -1. */
+/* Sends a message to the node, waiting up to a second while the interface's queue is full.
+ * Returns 0 or -1. */
 int link_send(tlink *l, proto_msg msg, const int32_t *values);
 /* The same to another node. */
 int link_send_to(tlink *l, uint8_t node, proto_msg msg, const int32_t *values);

@@ -138,6 +138,17 @@ const tsectl_command tsectl_commands[] = {
      "It takes effect when the controller restarts (power cycle or reset); until then it answers on its\n"
      "current id.  Refused (exit 3, nothing changed) when a controller already answers on N.",
      check_node, run_node, 1, 0},
+    {"flash", "flash IMAGE [--bitrate BPS] [--no-start]",
+     "Update the controller's firmware over the bus (docs/protocol.md, Updating the firmware).  IMAGE is\n"
+     "an image with its header (tse-image stamp); one whose header, length or CRC is wrong exits 2 with\n"
+     "nothing sent.  A node running its application is asked to restart into its bootloader (refused\n"
+     "while its drives may be on: disable first).  An image for another board, or too long for the\n"
+     "application area, exits 3 before anything is erased.  Then erase (timed apart), the blocks with\n"
+     "progress, verify (the bootloader's CRC of what it wrote, and its report of the image), and start\n"
+     "it (--no-start: the board stays in its bootloader).\n"
+     "Prints the transfer's duration and rate against the bus's limit, --bitrate / 8 bytes a second\n"
+     "(default 500000 bit/s): on the wall clock, and as the time its frames need on such a bus.",
+     check_flash, run_flash, 0, 0},
     {"heartbeat", "heartbeat", "Send the host heartbeat every 100 ms until interrupted (the controller's watchdog\n"
                                 "stops the robot after watchdog_ms of silence while the drives are on).",
      check_none, run_heartbeat, 1, 0},

@@ -595,7 +595,7 @@ class Controller:
             if name == "STATUS":
                 self._status = _status_of(v)
                 self._status_serial += 1
-            elif name in ("ACK", "REJECT", "PARAM_VALUE", "MOVE_INFO", "INFO"):
+            elif name in ("ACK", "REJECT", "PARAM_VALUE", "MOVE_INFO", "INFO", "BOOT_ID", "BOOT_LAYOUT", "BOOT_APP"):
                 self._serial += 1
                 self._answers.append((self._serial, name, v))
                 del self._answers[:-512]
@@ -729,6 +729,17 @@ class Controller:
     def status(self):
         """The controller's next STATUS (a Status)."""
         return self._fresh_status()
+
+    def flash(self, path, progress=None):
+        """Updates the controller's firmware with the image at path, as `tsectl flash` does
+        (tse/flash.py; docs/protocol.md, "Updating the firmware"): asks an application to restart
+        into its bootloader (Rejected "state" while its drives may be on), refuses an image for
+        another board or too long before anything is erased, then erases, writes (progress(done,
+        total) after each block), verifies and starts it.  Returns a tse.flash.Flashed (version, crc,
+        erase_s, transfer_s, rate).  ValueError for a file that is no good image, nothing sent."""
+        from .flash import flash
+        with self._cmd_lock:
+            return flash(self, path, progress)
 
     def info(self):
         """What the controller is (INFO_GET, answered in every state): an Info with its firmware's version

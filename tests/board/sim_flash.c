@@ -20,9 +20,32 @@ void sim_flash_init(sim_flash *f, uint32_t sector_bytes, uint32_t seed)
     if (sector_bytes > SIM_FLASH_MAX_SECTOR_BYTES)
         sector_bytes = SIM_FLASH_MAX_SECTOR_BYTES;
     f->sector_bytes = sector_bytes & ~3u;
+    f->nsectors = 2;
+    f->sector_len[0] = f->sector_len[1] = f->sector_bytes;
+    f->sector_off[1] = f->sector_bytes;
+    f->total_bytes = 2u * f->sector_bytes;
     f->rng = seed ? seed : 0x9E3779B9u;
     memset(f->words, 0xFF, sizeof f->words);
     /* state[] is all SIM_WORD_ERASED (0) from the memset above */
+}
+
+int sim_flash_init_sectors(sim_flash *f, const uint32_t *bytes, uint32_t nsectors, uint32_t seed)
+{
+    sim_flash_init(f, 0, seed);
+    if (nsectors == 0 || nsectors > SIM_FLASH_MAX_SECTORS)
+        return -1;
+    uint32_t at = 0;
+    for (uint32_t k = 0; k < nsectors; ++k) {
+        if (bytes[k] % 4u != 0 || bytes[k] > 4u * SIM_FLASH_MAX_WORDS - at)
+            return -1;
+        f->sector_off[k] = at;
+        f->sector_len[k] = bytes[k];
+        at += bytes[k];
+    }
+    f->nsectors = nsectors;
+    f->sector_bytes = bytes[0];
+    f->total_bytes = at;
+    return 0;
 }
 
 /* Counts one write operation; true if the power goes during it. */
@@ -40,13 +63,13 @@ static bool power_cut_now(sim_flash *f)
 static int sim_erase(void *ctx, uint32_t sector)
 {
     sim_flash *f = ctx;
-    if (sector > 1u)
+    if (sector >= f->nsectors)
         return FLASH_OPS_EARG;
     if (f->dead)
         return FLASH_OPS_EFAIL;
-    const uint32_t n = f->sector_bytes / 4u;
-    uint32_t *w = &f->words[sector * n];
-    uint8_t *st = &f->state[sector * n];
+    const uint32_t n = f->sector_len[sector] / 4u;
+    uint32_t *w = &f->words[f->sector_off[sector] / 4u];
+    uint8_t *st = &f->state[f->sector_off[sector] / 4u];
     if (power_cut_now(f)) {
         f->cut_in_erase = true;
         /* How far the erase got: a threshold on a random draw per word, sometimes nothing,
@@ -74,7 +97,7 @@ static int sim_erase(void *ctx, uint32_t sector)
 static int sim_program(void *ctx, uint32_t offset, const uint32_t *words, uint32_t n)
 {
     sim_flash *f = ctx;
-    const uint32_t total = 2u * f->sector_bytes / 4u;
+    const uint32_t total = f->total_bytes / 4u;
     if (offset % 4u != 0 || offset / 4u > total || n > total - offset / 4u)
         return FLASH_OPS_EARG;
     for (uint32_t k = 0; k < n; ++k) {
@@ -121,6 +144,6 @@ void sim_flash_reboot(sim_flash *f)
 
 void sim_flash_poke(sim_flash *f, uint32_t byte_offset, uint8_t value)
 {
-    if (byte_offset < 2u * f->sector_bytes)
+    if (byte_offset < f->total_bytes)
         ((uint8_t *)f->words)[byte_offset] = value;
 }

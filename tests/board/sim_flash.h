@@ -1,4 +1,5 @@
-/* A simulated NOR flash of two sectors behind flash_ops, for the parameter log's tests.
+/* A simulated NOR flash behind flash_ops: two equal sectors for the parameter log's tests, or a
+ * device's sectors of their own sizes for the bootloader's (sim_flash_init_sectors).
  *
  * It keeps the rules of the real part and is stricter where the log must not lean on luck:
  * - erase sets a whole sector to 0xFFFFFFFF; program clears bits, a 32-bit word at a time;
@@ -21,9 +22,10 @@
 
 #include "hal_stm32f4/flash_ops.h"
 
-/* Room for the board's geometry: two sectors of 128 KiB. */
+/* Room for the board's geometry: two sectors of 128 KiB; or the F405's sectors 0..5 (256 KiB). */
 #define SIM_FLASH_MAX_SECTOR_BYTES 0x20000u
 #define SIM_FLASH_MAX_WORDS (2u * SIM_FLASH_MAX_SECTOR_BYTES / 4u)
+#define SIM_FLASH_MAX_SECTORS 12u
 
 enum { SIM_WORD_ERASED, SIM_WORD_PROGRAMMED, SIM_WORD_UNSETTLED };
 
@@ -38,7 +40,11 @@ typedef struct {
     bool cut_happened;  /* a cut has taken place since sim_flash_cut_after was called */
     bool cut_in_erase;  /* ...and it interrupted an erase (else a word program) */
     uint32_t cut_word;  /* the word index of the interrupted program */
-    uint32_t erases[2]; /* completed erases per sector */
+    uint32_t nsectors;                         /* sectors, in address order from word 0 */
+    uint32_t sector_off[SIM_FLASH_MAX_SECTORS]; /* each one's first byte */
+    uint32_t sector_len[SIM_FLASH_MAX_SECTORS]; /* and its bytes */
+    uint32_t total_bytes;
+    uint32_t erases[SIM_FLASH_MAX_SECTORS]; /* completed erases per sector */
     uint32_t programs;  /* completed word programs */
     uint32_t illegal;   /* programs refused as illegal */
 } sim_flash;
@@ -46,6 +52,10 @@ typedef struct {
 /* Two sectors of sector_bytes (a multiple of 4, at most SIM_FLASH_MAX_SECTOR_BYTES), fresh
  * from the factory: erased. */
 void sim_flash_init(sim_flash *f, uint32_t sector_bytes, uint32_t seed);
+
+/* nsectors sectors of bytes[k] each (multiples of 4, SIM_FLASH_MAX_WORDS words in all at most),
+ * erased; sector_bytes is bytes[0].  Returns 0, or -1 for a geometry that does not fit. */
+int sim_flash_init_sectors(sim_flash *f, const uint32_t *bytes, uint32_t nsectors, uint32_t seed);
 
 flash_ops sim_flash_ops(sim_flash *f);
 

@@ -30,6 +30,10 @@ static void test_state_table(void **state)
         {PM_CLEAR_FAULT, "rrrrraa"}, {PM_POSE_A, "-------"},      {PM_MOVE_COMMIT, "rraarrr"},
         {PM_TRAJ_COMMIT, "rrarrrr"}, {PM_PARAM_GET, "aaaaaaa"},   {PM_PARAM_SET, "arrrraa"},
         {PM_PARAM_SAVE, "arrrraa"},  {PM_INFO_GET, "aaaaaaa"},
+        /* Into the bootloader only with the drives off; its own commands never (protocol.md). */
+        {PM_BOOT_ENTER, "arrrraa"},  {PM_BOOT_QUERY, "rrrrrrr"},  {PM_BOOT_ERASE, "rrrrrrr"},
+        {PM_BOOT_WRITE, "rrrrrrr"},  {PM_BOOT_VERIFY, "rrrrrrr"}, {PM_BOOT_START, "rrrrrrr"},
+        {PM_BOOT_DATA, "rrrrrrr"},
     };
     for (size_t r = 0; r < sizeof rows / sizeof rows[0]; ++r) {
         for (size_t k = 0; k < sizeof states / sizeof states[0]; ++k) {
@@ -75,6 +79,26 @@ static void test_state_table(void **state)
                 send(PM_POSE_A, v);
                 break;
             }
+            case PM_BOOT_ENTER: {
+                const int32_t v[2] = {s, 0x544F4F42}; /* "BOOT" */
+                send(PM_BOOT_ENTER, v);
+                break;
+            }
+            case PM_BOOT_ERASE: {
+                const int32_t v[2] = {s, 4096};
+                send(PM_BOOT_ERASE, v);
+                break;
+            }
+            case PM_BOOT_WRITE: {
+                const int32_t v[5] = {s, 0, 128, 0, 0};
+                send(PM_BOOT_WRITE, v);
+                break;
+            }
+            case PM_BOOT_DATA: {
+                const int32_t v[4] = {1, 2, 3, 4};
+                send(PM_BOOT_DATA, v);
+                break;
+            }
             default: {
                 const int32_t v[1] = {s};
                 send(rows[r].cmd, v);
@@ -91,14 +115,28 @@ static void test_state_table(void **state)
                 /* and says which state refused */
                 assert_int_equal(reject_of(from, proto_table[rows[r].cmd].function).v[5], states[k]);
             }
+            /* A BOOT_ENTER taken leaves the controller waiting for its restart, the drives off:
+             * it takes nothing more, ENABLE least of all. */
+            assert_int_equal(fw_boot_requested(C), rows[r].cmd == PM_BOOT_ENTER && got == 'a');
+            if (fw_boot_requested(C)) {
+                assert_false(fw_drives_of(C));
+                const unsigned after = F.tx_count;
+                const fw_state was = fw_state_of(C);
+                cmd(PM_ENABLE);
+                fw_poll(C);
+                assert_int_equal(answer(after, proto_table[PM_ENABLE].function, NULL), 0);
+                assert_int_equal(fw_state_of(C), was);
+            }
         }
     }
-    /* Boot accepts nothing but e-stop, parameter reads and INFO_GET. */
+    /* Boot accepts nothing but e-stop, parameter reads, INFO_GET and BOOT_ENTER (a controller stuck
+     * in boot can still be updated). */
     for (int m = 0; m < PM_COUNT; ++m) {
         if (proto_table[m].dir != PROTO_TO_CONTROLLER)
             continue;
         const fw_reason r = fw_command_allowed((proto_msg)m, FW_STATE_BOOT);
-        const int ok = m == PM_ESTOP || m == PM_HOST_HEARTBEAT || m == PM_PARAM_GET || m == PM_INFO_GET;
+        const int ok = m == PM_ESTOP || m == PM_HOST_HEARTBEAT || m == PM_PARAM_GET || m == PM_INFO_GET ||
+                       m == PM_BOOT_ENTER;
         assert_int_equal(r == FW_REASON_NONE, ok);
     }
 }

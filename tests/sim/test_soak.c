@@ -90,6 +90,9 @@ static const char *const accepts[PM_COUNT] = {
     [PM_POSE_C] = "-AAAAAAA",      [PM_MOVE_COMMIT] = "---AA---", [PM_TRAJ_COMMIT] = "---AA---",
     [PM_PARAM_GET] = "AAAAAAAA",   [PM_PARAM_SET] = "-A----AA",   [PM_PARAM_SAVE] = "-A----AA",
     [PM_INFO_GET] = "AAAAAAAA",
+    [PM_BOOT_ENTER] = "AA----AA",  [PM_BOOT_QUERY] = "--------",  [PM_BOOT_ERASE] = "--------",
+    [PM_BOOT_WRITE] = "--------",  [PM_BOOT_VERIFY] = "--------", [PM_BOOT_START] = "--------",
+    [PM_BOOT_DATA] = "--------",
 };
 
 /* What the host sends, by kind. */

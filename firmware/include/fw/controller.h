@@ -47,6 +47,10 @@ fw_state fw_state_of(const fw_controller *c);
 fw_fault fw_fault_of(const fw_controller *c);
 bool fw_homed_of(const fw_controller *c);
 bool fw_drives_of(const fw_controller *c);
+/* BOOT_ENTER was accepted (with the drives off) and acknowledged: the platform should restart into
+ * its bootloader, asking it to stay (docs/protocol.md, Updating the firmware), once the ACK is
+ * on the bus.  Read by the thread after fw_poll; it never clears. */
+bool fw_boot_requested(const fw_controller *c);
 const fw_config *fw_config_of(const fw_controller *c);
 const fw_param_set *fw_params_of(const fw_controller *c);
 const tse_geometry *fw_geometry_of(const fw_controller *c);

@@ -85,6 +85,16 @@ typedef enum {
                                   * fault, an underrun, an e-stop, or its last row), or never began */
     FW_REASON_TOO_LONG = 17,     /* a move beyond what one frame may validate: longer than
                                   * FW_MOVE_MAX_S, or too long to prove near a limit (fw/reject.h) */
+    /* The bootloader's (docs/protocol.md, Updating the firmware; boot/update.h): */
+    FW_REASON_CRC = 18,          /* a block's or the image's CRC-32 differs from the one declared */
+    FW_REASON_ADDRESS = 19,      /* a block outside the application area or the erased length */
+    FW_REASON_LENGTH = 20,       /* an image or block length that cannot be (not whole words, too
+                                  * long, frames other than the block's, blocks missing) */
+    FW_REASON_HEADER = 21,       /* block 0 without a valid image header, or one whose length
+                                  * differs from the one erased for */
+    FW_REASON_BOARD = 22,        /* an image built for another board */
+    FW_REASON_FLASH = 23,        /* a flash erase or program failed */
+    FW_REASON_NO_IMAGE = 24,     /* BOOT_START with no valid application */
     FW_REASON_COUNT
 } fw_reason;
 

@@ -169,6 +169,47 @@ flash_ops flash_f4_ops(void (*idle)(void))
     return (flash_ops){&state, (const uint32_t *)log_base(), log_sector_bytes(), f4_erase, f4_program};
 }
 
+/* The whole device for the bootloader (flash_f4.h): sectors first .. end - 1 only. */
+#define DEVICE_BASE 0x08000000u
+static struct {
+    uint32_t first, end;
+} device;
+
+static uint32_t sector_start(uint32_t k)
+{
+    /* RM0090 table 5: four of 16 KiB, one of 64 KiB, then 128 KiB each. */
+    return k <= 4u ? k * 0x4000u : 0x20000u * (k - 4u);
+}
+
+static int dev_erase(void *ctx, uint32_t sector)
+{
+    (void)ctx;
+    if (sector < device.first || sector >= device.end)
+        return FLASH_OPS_EARG;
+    cycle_counter_on();
+    return erase_sector(sector);
+}
+
+static int dev_program(void *ctx, uint32_t offset, const uint32_t *words, uint32_t n)
+{
+    (void)ctx;
+    const uint32_t lo = sector_start(device.first), hi = sector_start(device.end);
+    if (offset % 4u != 0 || offset < lo || offset > hi || n > (hi - offset) / 4u)
+        return FLASH_OPS_EARG;
+    if (n == 0)
+        return FLASH_OPS_OK;
+    cycle_counter_on();
+    return program_words((volatile uint32_t *)(DEVICE_BASE + offset), words, n);
+}
+
+flash_ops flash_f4_device_ops(void (*idle)(void), uint32_t first, uint32_t end)
+{
+    state.idle = idle;
+    device.first = first;
+    device.end = end <= 12u ? end : 12u;
+    return (flash_ops){&device, (const uint32_t *)DEVICE_BASE, 0, dev_erase, dev_program};
+}
+
 uint32_t flash_f4_last_error(void)
 {
     return state.last_error;

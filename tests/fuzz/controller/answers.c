@@ -15,6 +15,10 @@ static const char *const accepts[PM_COUNT] = {
     [PM_POSE_C] = "-AAAAAAA",       [PM_MOVE_COMMIT] = "---AA---", [PM_TRAJ_COMMIT] = "---AA---",
     [PM_PARAM_GET] = "AAAAAAAA",    [PM_PARAM_SET] = "-A----AA",   [PM_PARAM_SAVE] = "-A----AA",
     [PM_INFO_GET] = "AAAAAAAA",
+    /* The bootloader's: BOOT_ENTER only with the drives off, the others never (an application). */
+    [PM_BOOT_ENTER] = "AA----AA",   [PM_BOOT_QUERY] = "--------",  [PM_BOOT_ERASE] = "--------",
+    [PM_BOOT_WRITE] = "--------",   [PM_BOOT_VERIFY] = "--------", [PM_BOOT_START] = "--------",
+    [PM_BOOT_DATA] = "--------",
 };
 
 /* PARAM_SET: what clears homed when it changes (docs/protocol.md); the margins and limits keep it. */
@@ -390,6 +394,11 @@ static void judge_command(oracle_model *o, rig *r, const oracle_outputs *out, bo
         break;
     case PM_INFO_GET:
         judge_info(r, out, w->v[0]);
+        break;
+    case PM_BOOT_ENTER: /* taken with the drives off: the controller now awaits its restart */
+        FUZZ_CHECK(hooked || out->n_ack);
+        if (out->n_ack)
+            FUZZ_CHECK(fw_boot_requested(r->c) && !fw_drives_of(r->c));
         break;
     default:
         FUZZ_CHECK(!"a command without a rule");

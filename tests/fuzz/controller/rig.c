@@ -202,7 +202,9 @@ void rig_start(rig *r, rig_fixture fixture)
 
 bool rig_over(const rig *r)
 {
-    return r->tick >= r->cap_ticks;
+    /* A BOOT_ENTER taken: the board restarts into its bootloader, and the input ends there (the
+     * controller takes no frame meanwhile, and what restarts is another program). */
+    return r->tick >= r->cap_ticks || fw_boot_requested(r->c);
 }
 
 /* The thread's poll: in place, or on the board's time. */

@@ -20,7 +20,11 @@
 
 #include "hal/can.h"
 
-#define CAN_RING_CAPACITY 32u /* a power of two */
+/* A power of two.  The bootloader's image builds its CAN driver with more (boot/stm32f4): a
+ * window of blocks arrives while it programs one. */
+#ifndef CAN_RING_CAPACITY
+#define CAN_RING_CAPACITY 32u
+#endif
 _Static_assert((CAN_RING_CAPACITY & (CAN_RING_CAPACITY - 1u)) == 0, "ring capacity: power of two");
 
 typedef struct {

@@ -41,6 +41,12 @@
  * is called on every poll of a wait and must live in .ramfunc. */
 flash_ops flash_f4_ops(void (*idle)(void));
 
+/* The ops over the whole flash from 0x08000000, for the bootloader's update (boot/layout.h):
+ * erase(k) erases sector k, program takes offsets from 0x08000000; both only within sectors
+ * first .. end - 1 (the application area), anything else FLASH_OPS_EARG: the bootloader's own
+ * sectors and the parameter log cannot be touched through them, whatever the caller asks. */
+flash_ops flash_f4_device_ops(void (*idle)(void), uint32_t first, uint32_t end);
+
 /* The SR error flags of the last operation that failed on them, 0 if none has. */
 uint32_t flash_f4_last_error(void);
 

@@ -1,8 +1,10 @@
-/* The flash a parameter log (param_log.h) lives in, as the log sees it: two equal sectors,
- * one after the other, read through memory and changed only through erase and program.
+/* A region of flash as a writer sees it, read through memory and changed only through erase and
+ * program.  The parameter log's (param_log.h) is two equal sectors, one after the other
+ * (sector_bytes each); the bootloader's update (boot/update.h) sees the device from its first
+ * sector, its sectors' sizes in a boot_layout (sector_bytes unused, 0).
  *
- * The log is written against this and nothing else, so that the same code runs over the
- * board's flash controller (flash_f4.h) and over the simulated NOR flash of the tests.
+ * Both are written against this and nothing else, so that the same code runs over the board's
+ * flash controller (flash_f4.h) and over the simulated NOR flash of the tests.
  *
  * Semantics every implementation keeps (NOR flash):
  * - erase sets every bit of one sector to 1 (every word reads 0xFFFFFFFF);
@@ -25,11 +27,13 @@ enum {
 
 typedef struct {
     void *ctx;
-    /* The region's contents, memory-mapped: sector 0 is words [0, sector_bytes / 4), sector 1
-     * the next sector_bytes / 4 words.  Reads see every completed erase and program. */
+    /* The region's contents, memory-mapped (a parameter log's: sector 0 is words
+     * [0, sector_bytes / 4), sector 1 the next sector_bytes / 4 words).  Reads see every
+     * completed erase and program. */
     const uint32_t *mem;
     uint32_t sector_bytes; /* a multiple of 4 */
-    /* Erases sector 0 or 1 of the region. */
+    /* Erases a sector of the region: 0 or 1 of a parameter log's, a device sector number of the
+     * bootloader's. */
     int (*erase)(void *ctx, uint32_t sector);
     /* Programs n words at byte offset `offset` from the region's start (a multiple of 4),
      * in increasing address order, each word once. */
