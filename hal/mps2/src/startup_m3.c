@@ -20,13 +20,24 @@ __attribute__((section(".isr_vector"), used)) static const vector vectors[16] = 
     Fault_Handler, 0, 0, 0, 0, Fault_Handler, Fault_Handler, 0, Fault_Handler, Fault_Handler,
 };
 
+/* The linker's section bounds come in as arguments: within one function they are pointers to
+ * different objects, whose comparison C does not define (and static analysis flags). */
+static void copy_words(uint32_t *dst, const uint32_t *src, const uint32_t *end)
+{
+    while (dst < end)
+        *dst++ = *src++;
+}
+
+static void zero_words(uint32_t *dst, const uint32_t *end)
+{
+    while (dst < end)
+        *dst++ = 0;
+}
+
 void Reset_Handler(void)
 {
-    const uint32_t *src = &_sidata;
-    for (uint32_t *dst = &_sdata; dst < &_edata;)
-        *dst++ = *src++;
-    for (uint32_t *dst = &_sbss; dst < &_ebss;)
-        *dst++ = 0;
+    copy_words(&_sdata, &_sidata, &_edata);
+    zero_words(&_sbss, &_ebss);
     m3_exit(main());
 }
 

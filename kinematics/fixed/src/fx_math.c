@@ -26,7 +26,8 @@ uint32_t fx_isqrt64(uint64_t x)
     const uint64_t xn = x << s;
     const uint32_t y = isqrt32((uint32_t)(xn >> 32));
     const uint64_t rem = xn - ((uint64_t)y * y << 32);   /* below (2 y + 1) 2^32 */
-    uint64_t r = ((uint64_t)y << 16) + (uint32_t)(rem >> 17) / y;
+    /* y >= 2^15: xn's top word is at least 2^30 (x >= 2^32, shifted up to its top bits). */
+    uint64_t r = ((uint64_t)y << 16) + (uint32_t)(rem >> 17) / y; // NOLINT(clang-analyzer-core.DivideZero)
     if (r > 0xFFFFFFFFu)
         r = 0xFFFFFFFFu;
     while (r * r > xn)

@@ -15,6 +15,7 @@
 
 /* C11 leaves the right shift of a negative value to the implementation; GCC and Clang (the
  * project's compilers, on the host and the board) document it as arithmetic, which this checks. */
+/* cppcheck-suppress shiftNegativeLHS ; the point: this asserts how the compiler shifts one */
 _Static_assert((-5 >> 1) == -3, "the right shift of a negative value must be arithmetic");
 
 /* x >> n, rounded toward minus infinity, for any n (n < 0 shifts left through fx_shl). */
@@ -24,6 +25,8 @@ static inline int64_t fx_shr(int64_t x, int n)
         return n == 0 ? x : (int64_t)((uint64_t)x << (-n > 63 ? 63 : -n));
     if (n > 63)
         return x < 0 ? -1 : 0;
+    /* cppcheck-suppress shiftNegativeLHS ; arithmetic, as the _Static_assert above checks */
+    /* cppcheck-suppress shiftTooManyBitsSigned ; the same */
     return x >> n;
 }
 
@@ -58,6 +61,7 @@ static inline uint64_t fx_abs64(int64_t x)
  * -x - 1, which costs no negation): every caller leaves a bit of room for it. */
 static inline int fx_bits64(int64_t x)
 {
+    /* cppcheck-suppress shiftTooManyBitsSigned ; arithmetic (the _Static_assert above): x's sign */
     return 64 - fx_clz64((uint64_t)(x ^ (x >> 63)));
 }
 

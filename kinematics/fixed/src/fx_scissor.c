@@ -28,7 +28,7 @@ void fx_localize(const tse_fx_geometry *g, int i, const int64_t C[3], fx_local *
         if (dd[k] >= room || dd[k] <= -room)
             return;
         d[k] = (int32_t)dd[k];
-        loc->d[k] = (int32_t)((dd[k] + 8) >> 4);
+        loc->d[k] = (int32_t)fx_shr(dd[k] + 8, 4);
     }
     const int64_t u58 = (int64_t)d[0] * f->a[0] + (int64_t)d[1] * f->a[1];
     const int64_t v58 = (int64_t)d[0] * f->b[0] + (int64_t)d[1] * f->b[1];
@@ -337,7 +337,7 @@ static int poly_roots(const int64_t *c, int deg, int32_t lo, int32_t hi, const i
             const int32_t mid = a + (b - a) / 2;
             const int sm = sign64(poly_eval(c, deg, mid));
             if (sm == 0) {
-                a = b = mid;
+                a = mid; /* the root itself: the bracket is done */
                 break;
             }
             if (sm == sa)
